@@ -1,0 +1,99 @@
+#include "model/dynamics.hpp"
+
+#include <cmath>
+
+#include "model/motor.hpp"
+
+namespace maptr::model {
+namespace {
+constexpr double kTwoOverPi = 2.0 / M_PI;
+}
+
+SideLoad side_load(const MotorParams& m, const std::vector<double>& voltage,
+                   const std::vector<uint8_t>& active, double phidot) {
+  SideLoad s;
+  const double sgn = smooth_sign(phidot, m.friction_sign_scale_rad_s);
+  const double drag = m.viscous_Nms * phidot;
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    if (active[i]) {
+      const double v = voltage[i];
+      const double cur = armature_current(m, v, phidot);
+      s.torque_Nm += m.torque_constant_NmA * (cur - m.no_load_current_A * sgn) - drag;
+      s.current_A += cur;
+      s.power_W += v * cur;
+      s.joule_W += cur * cur * m.resistance_ohm;
+      s.motor_loss_W += (m.torque_constant_NmA * m.no_load_current_A * sgn + drag) * phidot;
+      s.emf_loss_W += (m.back_emf_Vs - m.torque_constant_NmA) * cur * phidot;
+    } else {
+      s.torque_Nm -= drag;
+      s.motor_loss_W += drag * phidot;
+    }
+  }
+  return s;
+}
+
+double kinetic_energy(const RobotParams& p, double v, double w) {
+  const double r = p.wheel_radius_m, a = p.track_m, n = p.agents, iw = p.wheel_inertia();
+  const double m_eff = p.gross_mass_kg + n * iw / (r * r);
+  const double i_eff = p.yaw_inertia() + n * iw * a * a / (4.0 * r * r);
+  return 0.5 * m_eff * v * v + 0.5 * i_eff * w * w;
+}
+
+double rolling_resistance(const RobotParams& p, double v) {
+  return p.mu_rolling * p.gross_mass_kg * p.gravity * kTwoOverPi * std::atan(p.k_s * v);
+}
+
+BodyForces body_forces(const RobotParams& p, double tau_l, double tau_r, double v, double w) {
+  const double r = p.wheel_radius_m, a = p.track_m;
+  const int n = p.agents;
+  const double v_l = v - 0.5 * a * w, v_r = v + 0.5 * a * w;
+  // Rolling resistance: N/2 wheels per side, normal load m g / N each.
+  const double per_wheel = p.gross_mass_kg * p.gravity / n;
+  const double roll_l = 0.5 * n * p.mu_rolling * per_wheel * kTwoOverPi * std::atan(p.k_s * v_l);
+  const double roll_r = 0.5 * n * p.mu_rolling * per_wheel * kTwoOverPi * std::atan(p.k_s * v_r);
+  // Lateral friction: 4 wheels per row, lateral speed w x_j.
+  double m_lat = 0.0, p_lat = 0.0;
+  for (int j = 0; j < p.rows(); ++j) {
+    const double xj = p.row_offset(j);
+    const double f = 4.0 * p.mu_lateral * per_wheel * kTwoOverPi * std::atan(p.k_s * w * xj);
+    m_lat += f * xj;
+    p_lat += f * w * xj;
+  }
+  BodyForces b;
+  b.f_rx = roll_l + roll_r;
+  b.m_r = m_lat + 0.5 * a * (roll_r - roll_l);
+  const double iw = p.wheel_inertia();
+  const double m_eff = p.gross_mass_kg + n * iw / (r * r);
+  const double i_eff = p.yaw_inertia() + n * iw * a * a / (4.0 * r * r);
+  b.dv_x = ((tau_l + tau_r) / r - b.f_rx) / m_eff;
+  b.dw = (0.5 * a * (tau_r - tau_l) / r - b.m_r) / i_eff;
+  b.ground_loss_W = roll_l * v_l + roll_r * v_r + p_lat;
+  return b;
+}
+
+void derivative(const RobotParams& p, const Inputs& u, const double* x, double* dx) {
+  const double r = p.wheel_radius_m, a = p.track_m;
+  const double v = x[kVx], w = x[kW], th = x[kTheta];
+  const double v_l = v - 0.5 * a * w, v_r = v + 0.5 * a * w;
+  const SideLoad left = side_load(p.motor, u.voltage_L, u.active_L, v_l / r);
+  const SideLoad right = side_load(p.motor, u.voltage_R, u.active_R, v_r / r);
+  const BodyForces b = body_forces(p, left.torque_Nm, right.torque_Nm, v, w);
+
+  dx[kX] = v * std::cos(th);
+  dx[kY] = v * std::sin(th);
+  dx[kTheta] = w;
+  dx[kVx] = b.dv_x;
+  dx[kW] = b.dw;
+  dx[kEnergyL] = left.power_W;
+  dx[kEnergyR] = right.power_W;
+  dx[kChargeL] = left.current_A / 3.6;   // A -> mAh/s
+  dx[kChargeR] = right.current_A / 3.6;
+  dx[kPathL] = std::fabs(v_l);
+  dx[kPathR] = std::fabs(v_r);
+  dx[kDistance] = std::fabs(v);
+  dx[kLossJoule] = left.joule_W + right.joule_W;
+  dx[kLossMech] = left.motor_loss_W + right.motor_loss_W + b.ground_loss_W;
+  dx[kLossEmf] = left.emf_loss_W + right.emf_loss_W;
+}
+
+}  // namespace maptr::model

@@ -1,0 +1,87 @@
+#pragma once
+// The plant's derivative function (paper Sec. 3 with DESIGN's corrections), for any N.
+//
+//   (m + N I_w / r^2) dv_x/dt            = (tau_L + tau_R) / r - F_rx
+//   (I_zz + N I_w a^2 / (4 r^2)) dw/dt   = (a/2)(tau_R - tau_L) / r - M_r
+//   dX/dt = v_x cos(theta), dY/dt = v_x sin(theta), dtheta/dt = w
+// tau_side = sum over the side's motors (active: DC motor model; inactive: -b phidot).
+// Rolling, per wheel:  F_s = mu_s (m g / N) (2/pi) atan(k_s v_side)   (summed into F_rx;
+//   the left/right difference gives the yaw moment (a/2)(F_R - F_L)).
+// Lateral, per wheel of row j at x_j: F_l = mu_l (m g / N) (2/pi) atan(k_s w x_j),
+//   M_lat = sum_j F_l x_j (4 wheels per row).
+// Integrated ledgers (all explicit states, so that CVODE integrates them too):
+//   energy drawn per side (J), discharge per side (mAh), path length per side (m),
+//   distance (m), Joule losses, mechanical losses, back-emf/torque-constant mismatch losses (J).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "model/params.hpp"
+
+namespace maptr::model {
+
+enum StateIndex : int {
+  kX = 0,       ///< m, world
+  kY,           ///< m, world
+  kTheta,       ///< rad
+  kVx,          ///< m/s, body forward speed
+  kW,           ///< rad/s, yaw rate
+  kEnergyL,     ///< J drawn from the left battery
+  kEnergyR,     ///< J
+  kChargeL,     ///< mAh drawn from the left battery
+  kChargeR,     ///< mAh
+  kPathL,       ///< m, integral of |v_L|
+  kPathR,       ///< m, integral of |v_R|
+  kDistance,    ///< m, integral of |v_x|
+  kLossJoule,   ///< J, I^2 R
+  kLossMech,    ///< J, ground friction + motor friction + viscous drag
+  kLossEmf,     ///< J, (K_e - K_T) I phidot (the datasheet's K_e != K_T)
+  kStateSize
+};
+
+using State = std::array<double, kStateSize>;
+
+/// Inputs held over one tick (zero-order hold): each agent's voltage and activation.
+/// Index i of side s is agent s<i>; voltage of an inactive agent is ignored.
+struct Inputs {
+  std::vector<double> voltage_L, voltage_R;   ///< V
+  std::vector<uint8_t> active_L, active_R;    ///< 1 = motor driven, 0 = free-wheeling
+
+  explicit Inputs(int per_side = 0)
+      : voltage_L(per_side, 0.0), voltage_R(per_side, 0.0), active_L(per_side, 0), active_R(per_side, 0) {}
+};
+
+/// Per-side quantities at one instant (for diagnostics and the agents' current/efficiency).
+struct SideLoad {
+  double torque_Nm = 0.0;   ///< net shaft torque of the side's motors
+  double current_A = 0.0;   ///< total armature current drawn
+  double power_W = 0.0;     ///< electrical power drawn
+  double joule_W = 0.0;
+  double motor_loss_W = 0.0;  ///< motor friction + viscous dissipation
+  double emf_loss_W = 0.0;
+};
+
+SideLoad side_load(const MotorParams& m, const std::vector<double>& voltage,
+                   const std::vector<uint8_t>& active, double phidot_rad_s);
+
+/// Rigid-body part of the dynamics for given net side torques (shared by the plant's
+/// derivative and by the Level-2 rollout, so both use one model).
+struct BodyForces {
+  double dv_x = 0.0;        ///< m/s^2
+  double dw = 0.0;          ///< rad/s^2
+  double f_rx = 0.0;        ///< N, longitudinal resistance
+  double m_r = 0.0;         ///< N m, resisting yaw moment
+  double ground_loss_W = 0.0;  ///< power dissipated by rolling and lateral friction
+};
+BodyForces body_forces(const RobotParams& p, double tau_L_Nm, double tau_R_Nm, double v_x, double w);
+
+/// Derivative of the state; dx must have kStateSize entries. Pure function.
+void derivative(const RobotParams& p, const Inputs& u, const double* x, double* dx);
+
+/// Kinetic energy of the robot (translation, yaw, wheels), J.
+double kinetic_energy(const RobotParams& p, double v_x, double w);
+
+/// Longitudinal resistance F_rx at a straight-line speed v (w = 0), N.
+double rolling_resistance(const RobotParams& p, double v);
+
+}  // namespace maptr::model

@@ -1,0 +1,35 @@
+#pragma once
+// DC motor of one agent (paper eq. motor1, corrected: DESIGN "Motor", "Inactive motors").
+//   active:   I_a = max(0, (V - K_e phidot) / Omega)          [A]   (driver does not regenerate)
+//             tau = K_T (I_a - I_0 sgn_s(phidot)) - b phidot   [N m] (K_T I_0 is friction)
+//   inactive: open circuit, I_a = 0, tau = -b phidot           [N m]
+// sgn_s(x) = tanh(x / friction_sign_scale): a smooth sign that vanishes at standstill.
+#include "model/params.hpp"
+
+namespace maptr::model {
+
+/// Smooth sign used for Coulomb-like motor friction.
+double smooth_sign(double phidot_rad_s, double scale_rad_s);
+
+/// Armature current of an active motor, A (never negative: no regeneration).
+double armature_current(const MotorParams& m, double voltage_V, double phidot_rad_s);
+
+/// Net shaft torque of an active motor at the given current and speed, N m.
+double active_torque(const MotorParams& m, double current_A, double phidot_rad_s);
+
+/// Net shaft torque of an inactive (free-wheeling) motor, N m.
+double inactive_torque(const MotorParams& m, double phidot_rad_s);
+
+/// Efficiency tau phidot / (V I) of an active motor; 0 when it draws no power or brakes.
+double efficiency(const MotorParams& m, double voltage_V, double phidot_rad_s);
+
+/// Steady no-load speed at voltage V (tau = 0, phidot > 0), rad/s. Closed form.
+double no_load_speed(const MotorParams& m, double voltage_V);
+
+/// Stall torque at voltage V (phidot = 0), N m: K_T (V/Omega - I_0 sgn_s(0)) = K_T V / Omega.
+double stall_torque(const MotorParams& m, double voltage_V);
+
+/// Voltage an active motor needs to give torque tau at speed phidot, V (ignores clamping).
+double voltage_for_torque(const MotorParams& m, double torque_Nm, double phidot_rad_s);
+
+}  // namespace maptr::model

@@ -1,0 +1,33 @@
+#include "model/pid.hpp"
+
+#include <algorithm>
+
+namespace maptr::model {
+
+double Pid::update(double e, double dt, double v_max) {
+  const double de = first_ ? 0.0 : (e - prev_error_) / dt;
+  first_ = false;
+  prev_error_ = e;
+  const double candidate_i = integral_ + e * dt;
+  const double unclamped = g_.kp * e + g_.ki * candidate_i + g_.kd * de;
+  const double out = std::clamp(unclamped, 0.0, std::max(0.0, v_max));
+  const bool high = unclamped > out, low = unclamped < out;
+  saturated_ = high || low;
+  // Conditional integration: keep the new integral unless it deepens the saturation.
+  if (!((high && e > 0.0) || (low && e < 0.0))) integral_ = candidate_i;
+  return out;
+}
+
+void Pid::reset() {
+  integral_ = 0.0;
+  prev_error_ = 0.0;
+  first_ = true;
+  saturated_ = false;
+}
+
+void Pid::preload(double out) {
+  reset();
+  if (g_.ki > 0.0) integral_ = out / g_.ki;
+}
+
+}  // namespace maptr::model

@@ -1,0 +1,31 @@
+#pragma once
+// Level-1 wheel-speed PID (paper eq. PID with the error sign corrected):
+//   e = phidot_ref - phidot,  V = K_P e + K_I E + K_D de/dt,  E = integral of e dt,
+// clamped to [0, V_max] (V_max = battery voltage). Anti-windup by conditional integration:
+// the integral is not advanced when the output is saturated and the error pushes further
+// into saturation. Explicit time: the caller passes dt; no clock is read.
+#include "model/params.hpp"
+
+namespace maptr::model {
+
+class Pid {
+ public:
+  explicit Pid(PidParams g = {}) : g_(g) {}
+
+  /// One control step; returns the clamped voltage, V.
+  double update(double error_rad_s, double dt_s, double v_max_V);
+  void reset();
+  /// Bumpless start: set the integral so that a zero error gives output_V.
+  void preload(double output_V);
+  double integral() const { return integral_; }
+  bool saturated() const { return saturated_; }
+
+ private:
+  PidParams g_;
+  double integral_ = 0.0;   ///< rad
+  double prev_error_ = 0.0; ///< rad/s
+  bool first_ = true;
+  bool saturated_ = false;
+};
+
+}  // namespace maptr::model
