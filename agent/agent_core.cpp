@@ -1,0 +1,53 @@
+#include "agent/agent_core.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/motor.hpp"
+
+namespace maptr::agent {
+
+AgentCore::AgentCore(AgentConfig c) : c_(c), pid_(c.pid) {}
+
+AgentOutput AgentCore::step(const AgentInput& in) {
+  AgentOutput out;
+  const double dt = c_.dt_s;
+  // Assignment: fresh from the group, or held for a bounded time, then coast.
+  bool assigned = false;
+  const bool group_fresh = in.group_stamp >= 0 && in.tick - in.group_stamp <= 1;
+  const double group_age_s = in.group_stamp < 0 ? 0.0 : (in.tick - in.group_stamp - 1) * dt;
+  if (group_fresh) {
+    assigned = in.assigned;
+    last_assigned_ = assigned;
+    out.state = assigned ? AgentState::kActive : AgentState::kIdle;
+  } else if (in.group_stamp >= 0 && group_age_s <= c_.group_hold_s) {
+    assigned = last_assigned_;
+    out.state = assigned ? AgentState::kHolding : AgentState::kIdle;
+  } else {
+    out.state = in.group_stamp < 0 ? AgentState::kIdle : AgentState::kCoasting;
+  }
+
+  // Reference: from central, or a ramp to zero when central has been silent too long.
+  double ref = in.phidot_ref_rad_s;
+  const double central_age_s = in.central_stamp < 0 ? 0.0 : (in.tick - in.central_stamp - 1) * dt;
+  if (in.central_stamp >= 0 && central_age_s > c_.central_timeout_s) {
+    stop_ref_ = std::max(0.0, stop_ref_ - c_.stop_decel_mps2 / c_.wheel_radius_m * dt);
+    ref = stop_ref_;
+    if (assigned) out.state = AgentState::kStopping;
+  } else {
+    stop_ref_ = ref;
+  }
+
+  if (assigned) {
+    if (!was_driving_) pid_.preload(c_.motor.back_emf_Vs * in.phidot_rad_s);  // bumpless: zero current
+    out.voltage_V = pid_.update(ref - in.phidot_rad_s, dt, in.battery_V);
+    out.current_A = model::armature_current(c_.motor, out.voltage_V, in.phidot_rad_s);
+    out.efficiency = model::efficiency(c_.motor, out.voltage_V, in.phidot_rad_s);
+  } else {
+    pid_.reset();
+  }
+  was_driving_ = assigned;
+  return out;
+}
+
+}  // namespace maptr::agent

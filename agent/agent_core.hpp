@@ -1,0 +1,61 @@
+#pragma once
+// Agent logic for one wheel-motor pair (Level 1), free of DDS and clocks: it sees the tick
+// the plant published and returns the voltage to apply for [t_k, t_k+1].
+//   assigned active by its group -> PID on phidot_ref - phidot, clamped to [0, V_B]
+//   not assigned                 -> open circuit (0 V, PID reset)
+//   group silent (its status older than one tick): hold the last assignment for group_hold_s,
+//                                   then coast (open circuit)
+//   central silent longer than central_timeout_s: ramp the last reference to zero at
+//                                   stop_decel (a safe stop), still obeying the group
+#include <cstdint>
+
+#include "model/params.hpp"
+#include "model/pid.hpp"
+
+namespace maptr::agent {
+
+enum class AgentState : uint8_t { kIdle = 0, kActive = 1, kHolding = 2, kCoasting = 3, kStopping = 4 };
+
+struct AgentConfig {
+  model::MotorParams motor;
+  model::PidParams pid;
+  double wheel_radius_m = 0.035;
+  double dt_s = 0.01;
+  double group_hold_s = 1.0;
+  double central_timeout_s = 1.0;
+  double stop_decel_mps2 = 2.0;
+};
+
+/// What an agent reads from one tick (its own side's values).
+struct AgentInput {
+  long long tick = 0;
+  double phidot_rad_s = 0.0;     ///< its wheel's speed
+  double battery_V = 0.0;        ///< its group's battery voltage
+  double phidot_ref_rad_s = 0.0; ///< reference in force
+  long long central_stamp = -1;  ///< tick of the central command in force
+  bool assigned = false;         ///< its bit in the group's active mask
+  long long group_stamp = -1;    ///< tick of the group status in force
+};
+
+struct AgentOutput {
+  double voltage_V = 0.0;
+  double current_A = 0.0;
+  double efficiency = 0.0;
+  AgentState state = AgentState::kIdle;
+  bool drives() const { return state == AgentState::kActive || state == AgentState::kHolding || state == AgentState::kStopping; }
+};
+
+class AgentCore {
+ public:
+  explicit AgentCore(AgentConfig c);
+  AgentOutput step(const AgentInput& in);
+
+ private:
+  AgentConfig c_;
+  model::Pid pid_;
+  bool last_assigned_ = false;
+  bool was_driving_ = false;
+  double stop_ref_ = 0.0;  ///< reference while stopping, rad/s
+};
+
+}  // namespace maptr::agent

@@ -1,0 +1,192 @@
+#include "comm/dds.hpp"
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+
+#include <cstdlib>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace maptr::comm {
+
+namespace dds = eprosima::fastdds::dds;
+namespace rtps = eprosima::fastrtps::rtps;
+
+void Signal::notify() {
+  {
+    std::lock_guard<std::mutex> g(m_);
+    count_.fetch_add(1);
+  }
+  cv_.notify_all();
+}
+
+uint64_t Signal::wait_until(uint64_t seen, std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock<std::mutex> lk(m_);
+  cv_.wait_until(lk, deadline, [&] { return count_.load() != seen; });
+  return count_.load();
+}
+
+namespace {
+
+rtps::Locator_t parse_locator(const std::string& addr) {
+  const auto colon = addr.rfind(':');
+  if (colon == std::string::npos) throw std::invalid_argument("discovery server '" + addr + "': expected HOST:PORT");
+  rtps::Locator_t loc;
+  loc.kind = LOCATOR_KIND_UDPv4;
+  rtps::IPLocator::setIPv4(loc, addr.substr(0, colon));
+  loc.port = static_cast<uint32_t>(std::stoul(addr.substr(colon + 1)));
+  return loc;
+}
+
+rtps::GuidPrefix_t server_prefix() {
+  rtps::GuidPrefix_t p;
+  eprosima::fastdds::rtps::get_server_client_default_guidPrefix(0, p);
+  return p;
+}
+
+}  // namespace
+
+Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
+  dds::DomainParticipantQos q = dds::PARTICIPANT_QOS_DEFAULT;
+  q.name(name);
+  auto& disc = q.wire_protocol().builtin.discovery_config;
+  const long lease_ms = static_cast<long>(o.lease_s * 1000.0);
+  disc.leaseDuration = eprosima::fastrtps::Duration_t(static_cast<int32_t>(lease_ms / 1000),
+                                        static_cast<uint32_t>((lease_ms % 1000) * 1000000));
+  const long ann_ms = std::max(100L, lease_ms / 4);
+  disc.leaseDuration_announcementperiod =
+      eprosima::fastrtps::Duration_t(static_cast<int32_t>(ann_ms / 1000), static_cast<uint32_t>((ann_ms % 1000) * 1000000));
+
+  if (o.is_server) {
+    if (o.discovery_server.empty()) throw std::invalid_argument("discovery server address missing");
+    disc.discoveryProtocol = rtps::DiscoveryProtocol_t::SERVER;
+    q.wire_protocol().prefix = server_prefix();
+    q.wire_protocol().builtin.metatrafficUnicastLocatorList.push_back(parse_locator(o.discovery_server));
+  } else if (!o.discovery_server.empty()) {
+    disc.discoveryProtocol = rtps::DiscoveryProtocol_t::CLIENT;
+    rtps::RemoteServerAttributes server;
+    server.guidPrefix = server_prefix();
+    server.metatrafficUnicastLocatorList.push_back(parse_locator(o.discovery_server));
+    disc.m_DiscoveryServers.push_back(server);
+    disc.discoveryServer_client_syncperiod = eprosima::fastrtps::Duration_t(0, 250 * 1000000);
+  }
+  // Shared memory carries the data between processes on this host; UDP on loopback carries
+  // discovery (to the server) and is the fallback.
+  q.transport().use_builtin_transports = false;
+  auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
+  if (o.shm_segment_bytes > 0) shm->segment_size(o.shm_segment_bytes);
+  q.transport().user_transports.push_back(shm);
+  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  udp->interfaceWhiteList.emplace_back("127.0.0.1");
+  q.transport().user_transports.push_back(udp);
+
+  dp_ = dds::DomainParticipantFactory::get_instance()->create_participant(o.domain, q);
+  if (!dp_) throw std::runtime_error("cannot create DDS participant '" + name + "' on domain " + std::to_string(o.domain));
+  pub_ = dp_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+  sub_ = dp_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  if (!pub_ || !sub_) throw std::runtime_error("cannot create DDS publisher/subscriber for '" + name + "'");
+}
+
+Participant::~Participant() {
+  if (!dp_) return;
+  for (auto* w : writers_) pub_->delete_datawriter(w);
+  for (auto* r : readers_) sub_->delete_datareader(r);
+  dp_->delete_publisher(pub_);
+  dp_->delete_subscriber(sub_);
+  for (auto* t : topics_) dp_->delete_topic(t);
+  dds::DomainParticipantFactory::get_instance()->delete_participant(dp_);
+}
+
+dds::Topic* Participant::make_topic(const std::string& name, dds::TypeSupport& ts) {
+  if (ts.register_type(dp_) != ReturnCode_t::RETCODE_OK) {
+    // Already registered under this name: fine.
+  }
+  dds::Topic* t = dp_->create_topic(name, ts.get_type_name(), dds::TOPIC_QOS_DEFAULT);
+  if (!t) throw std::runtime_error("cannot create topic " + name);
+  topics_.push_back(t);
+  return t;
+}
+
+namespace {
+
+void apply_liveliness(dds::LivelinessQosPolicy& l, double lease_s) {
+  l.kind = dds::AUTOMATIC_LIVELINESS_QOS;
+  l.lease_duration = eprosima::fastrtps::Duration_t(lease_s);
+  l.announcement_period = eprosima::fastrtps::Duration_t(lease_s / 4.0);
+}
+
+}  // namespace
+
+dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l) {
+  dds::DataWriterQos q = dds::DATAWRITER_QOS_DEFAULT;
+  q.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+  if (p == Profile::kStream) {
+    q.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+    q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    q.history().depth = 32;
+    // A lost sample must not stall the lock-step for the default 3 s.
+    q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 50 * 1000000);
+    q.reliable_writer_qos().times.nackResponseDelay = eprosima::fastrtps::Duration_t(0, 0);
+    apply_liveliness(q.liveliness(), o_.lease_s);
+  } else {
+    q.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+    q.history().kind = dds::KEEP_ALL_HISTORY_QOS;
+    q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 200 * 1000000);
+  }
+  q.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;
+  auto* w = pub_->create_datawriter(t, q, l, l ? dds::StatusMask::publication_matched() : dds::StatusMask::none());
+  if (!w) throw std::runtime_error("cannot create writer on " + t->get_name());
+  writers_.push_back(w);
+  return w;
+}
+
+dds::DataReader* Participant::reader(dds::Topic* t, Profile p, dds::DataReaderListener* l) {
+  dds::DataReaderQos q = dds::DATAREADER_QOS_DEFAULT;
+  q.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+  if (p == Profile::kStream) {
+    q.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+    q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    q.history().depth = 32;
+    apply_liveliness(q.liveliness(), o_.lease_s);
+  } else {
+    q.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+    q.history().kind = dds::KEEP_ALL_HISTORY_QOS;
+  }
+  dds::StatusMask mask = dds::StatusMask::data_available() << dds::StatusMask::subscription_matched()
+                         << dds::StatusMask::liveliness_changed();
+  auto* r = sub_->create_datareader(t, q, l, mask);
+  if (!r) throw std::runtime_error("cannot create reader on " + t->get_name());
+  readers_.push_back(r);
+  return r;
+}
+
+DdsOptions options_from_env() {
+  DdsOptions o;
+  if (const char* d = std::getenv("MAPTR_DOMAIN")) o.domain = std::atoi(d);
+  if (const char* s = std::getenv("MAPTR_DISCOVERY_SERVER")) o.discovery_server = s;
+  if (const char* l = std::getenv("MAPTR_LEASE_S")) o.lease_s = std::atof(l);
+  if (const char* m = std::getenv("MAPTR_SHM_SEGMENT_BYTES")) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
+  return o;
+}
+
+int clean_stale_shm() {
+  // `fastdds shm clean` (fastdds-tools) removes the segments and ports whose owner is gone;
+  // segments of live processes are kept.
+  const pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    if (FILE* f = freopen("/dev/null", "w", stdout)) (void)f;
+    if (FILE* f = freopen("/dev/null", "w", stderr)) (void)f;
+    execlp("fastdds", "fastdds", "shm", "clean", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace maptr::comm

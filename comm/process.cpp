@@ -1,0 +1,59 @@
+#include "comm/process.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/stdout_sinks.h>
+
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+
+namespace maptr::comm {
+
+namespace {
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop.store(true); }
+}  // namespace
+
+std::atomic<bool>& stop_flag() {
+  std::signal(SIGTERM, on_signal);
+  std::signal(SIGINT, on_signal);
+  return g_stop;
+}
+
+ProcessArgs parse_process_args(int argc, char** argv, const std::string& what) {
+  ProcessArgs a;
+  a.dds = options_from_env();
+  CLI::App app{what};
+  app.add_option("--config", a.config, "resolved scenario file")->required();
+  app.add_option("--run-dir", a.run_dir, "results folder")->required();
+  app.add_option("--name", a.name, "process name")->required();
+  app.add_option("--domain", a.dds.domain, "DDS domain id");
+  app.add_option("--discovery-server", a.dds.discovery_server, "HOST:PORT of the discovery server");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e));
+  }
+  try {
+    a.scenario = config::load_scenario(a.config);
+  } catch (const config::ScenarioError& e) {
+    std::cerr << a.name << ": " << e.what() << "\n";
+    std::exit(2);
+  }
+  return a;
+}
+
+std::shared_ptr<spdlog::logger> make_logger(const ProcessArgs& a) {
+  const std::string dir = a.run_dir + "/logs";
+  std::filesystem::create_directories(dir);
+  auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(dir + "/" + a.name + ".log", false);
+  auto err = std::make_shared<spdlog::sinks::stderr_sink_mt>();
+  err->set_level(spdlog::level::err);
+  auto log = std::make_shared<spdlog::logger>(a.name, spdlog::sinks_init_list{file, err});
+  log->set_pattern("%Y-%m-%d %H:%M:%S.%e [%n] %l: %v");
+  log->flush_on(spdlog::level::info);
+  return log;
+}
+
+}  // namespace maptr::comm

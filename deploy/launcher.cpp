@@ -1,0 +1,397 @@
+#include "deploy/launcher.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "comm/dds.hpp"
+#include "idl/maptrPubSubTypes.h"
+
+namespace maptr::deploy {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+std::atomic<bool> g_interrupted{false};
+void on_signal(int) { g_interrupted.store(true); }
+
+struct Child {
+  std::string name, binary;
+  std::vector<std::string> args;
+  uint8_t kind = 0, side = 0;
+  uint16_t index = 0;
+  pid_t pid = -1;
+  bool running = false;
+  int exit_code = -1, signal = 0;
+  long max_rss_kB = 0;
+  int starts = 0;
+};
+
+int free_udp_port() {
+  int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = 0;
+  socklen_t len = sizeof(a);
+  if (fd < 0 || bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0 ||
+      getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+    if (fd >= 0) close(fd);
+    throw std::runtime_error("cannot find a free UDP port on 127.0.0.1");
+  }
+  close(fd);
+  return ntohs(a.sin_port);
+}
+
+std::string sha256_of(const std::string& path) {
+  std::string cmd = "sha256sum '" + path + "'";
+  FILE* f = popen(cmd.c_str(), "r");
+  if (!f) return "";
+  char buf[128] = {0};
+  std::string out;
+  if (fgets(buf, sizeof(buf), f)) out = buf;
+  pclose(f);
+  return out.substr(0, out.find(' '));
+}
+
+void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std::string>& env) {
+  const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed for " + c.name);
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(1);
+    setpgid(0, 0);  // a Ctrl-C in the terminal reaches the launcher only; it ends the children
+    const int fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+      close(fd);
+    }
+    for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(c.binary.c_str()));
+    for (auto& a : c.args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(c.binary.c_str(), argv.data());
+    _exit(127);
+  }
+  c.pid = pid;
+  c.running = true;
+  c.exit_code = -1;
+  c.signal = 0;
+  ++c.starts;
+}
+
+}  // namespace
+
+nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
+  const config::Scenario& sc = o.scenario;
+  namespace fs = std::filesystem;
+  fs::create_directories(o.run_dir + "/logs");
+  const std::string cfg = o.run_dir + "/scenario.yaml";
+  std::ofstream(cfg) << config::to_yaml(sc);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  // Discovery server inside the launcher: clients find only what they need through it.
+  comm::DdsOptions dds;
+  dds.domain = o.domain;
+  dds.discovery_server = "127.0.0.1:" + std::to_string(free_udp_port());
+  dds.is_server = true;
+  dds.lease_s = std::max(2.0, 0.02 * sc.robot.agents);
+  comm::Signal signal;
+  comm::Inbox<msg::NodeReady> ready(signal);
+  comm::Inbox<msg::PlantTick> ticks(signal);
+  auto participant = std::make_unique<comm::Participant>("launcher", dds);
+  auto& p = *participant;
+  p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &ready);
+  p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &ticks);
+  auto* w_member = p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched);
+  auto* w_control = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
+
+  const std::map<std::string, std::string> env = {
+      {"MAPTR_DOMAIN", std::to_string(o.domain)},
+      {"MAPTR_DISCOVERY_SERVER", dds.discovery_server},
+      {"MAPTR_LEASE_S", std::to_string(dds.lease_s)}};
+  const std::vector<std::string> common = {"--config", cfg, "--run-dir", o.run_dir};
+
+  std::vector<Child> kids;
+  auto add = [&](const std::string& name, const std::string& bin, std::vector<std::string> extra, uint8_t kind,
+                 uint8_t side, uint16_t index) {
+    Child c;
+    c.name = name;
+    c.binary = o.bin_dir + "/" + bin;
+    c.args = common;
+    c.args.insert(c.args.end(), extra.begin(), extra.end());
+    c.kind = kind;
+    c.side = side;
+    c.index = index;
+    kids.push_back(c);
+  };
+  add("plant", "maptr_plant", {}, msg::NODE_PLANT, 0, 0);
+  add("central", "maptr_central", {}, msg::NODE_CENTRAL, 0, 0);
+  add("group-L", "maptr_group", {"--side", "L"}, msg::NODE_GROUP, 0, 0);
+  add("group-R", "maptr_group", {"--side", "R"}, msg::NODE_GROUP, 1, 0);
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j < sc.robot.per_side(); ++j) {
+      const std::string n = config::agent_name(s, j);
+      add(n, "maptr_agent", {"--id", n}, msg::NODE_AGENT, static_cast<uint8_t>(s), static_cast<uint16_t>(j));
+    }
+  for (const auto& c : kids)
+    if (!fs::exists(c.binary)) throw std::runtime_error("missing process binary " + c.binary);
+
+  const auto t_launch = Clock::now();
+  auto since = [&](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  for (auto& c : kids) spawn(c, o.run_dir, env);
+  log.info("launched {} processes (discovery server {})", kids.size(), dds.discovery_server);
+  if (o.progress)
+    std::fprintf(stderr, "maptr: launched %zu processes (%d agents, 2 groups, central, plant)\n", kids.size(),
+                 sc.robot.agents);
+
+  nlohmann::json summary;
+  std::string status = "ok";
+  uint64_t member_seq = 0;
+  auto by_pid = [&](pid_t pid) -> Child* {
+    for (auto& c : kids)
+      if (c.pid == pid && c.running) return &c;
+    return nullptr;
+  };
+  bool plant_done = false;
+  // Reaps dead children; publishes deaths the fleet did not expect.
+  auto reap = [&](bool expected) {
+    int st = 0;
+    rusage ru{};
+    pid_t pid;
+    while ((pid = wait4(-1, &st, WNOHANG, &ru)) > 0) {
+      Child* c = by_pid(pid);
+      if (!c) continue;
+      c->running = false;
+      c->exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+      c->signal = WIFSIGNALED(st) ? WTERMSIG(st) : 0;
+      c->max_rss_kB = std::max(c->max_rss_kB, ru.ru_maxrss);
+      if (c->name == "plant") plant_done = true;
+      if (!expected && c->name != "plant") {
+        msg::MembershipEvent e;
+        e.seq(++member_seq);
+        e.name(c->name);
+        e.node_kind(c->kind);
+        e.side(c->side);
+        e.index(c->index);
+        e.kind(msg::MEMBER_DIED);
+        e.wall_s(since(t_launch));
+        w_member->write(&e);
+        log.warn("{} (pid {}) died: exit {} signal {}", c->name, pid, c->exit_code, c->signal);
+      }
+    }
+  };
+
+  // 1. Discovery: wait until every process says it matched what it needs.
+  std::set<std::string> ready_names;
+  const double discovery_timeout = 30.0 + 0.5 * sc.robot.agents;
+  uint64_t seen = signal.count();
+  while (ready_names.size() < kids.size()) {
+    seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(50));
+    for (auto& [r, h] : ready.drain())
+      if (r.ready()) ready_names.insert(r.name());
+    reap(false);
+    bool early_death = false;
+    for (auto& c : kids)
+      if (!c.running) early_death = true;
+    if (early_death || g_interrupted.load() || since(t_launch) > discovery_timeout) {
+      std::string missing;
+      for (auto& c : kids)
+        if (!ready_names.count(c.name)) missing += (missing.empty() ? "" : " ") + c.name;
+      status = g_interrupted.load() ? "aborted: interrupted during discovery"
+               : early_death        ? "aborted: a process died during discovery (see logs/)"
+                                    : "aborted: discovery timed out; not ready: " + missing;
+      break;
+    }
+  }
+  const double discovery_s = since(t_launch);
+  if (status == "ok") {
+    log.info("all {} processes matched after {:.2f} s", kids.size(), discovery_s);
+    if (o.progress) std::fprintf(stderr, "maptr: all %zu processes matched in %.2f s; starting\n", kids.size(), discovery_s);
+    msg::Control c;
+    c.command(msg::CONTROL_START);
+    c.seq(1);
+    w_control->write(&c);
+  }
+
+  // 2. Run: progress, faults, deaths.
+  std::vector<config::FaultSpec> faults = sc.faults;
+  std::stable_sort(faults.begin(), faults.end(), [](auto& a, auto& b) { return a.at_s < b.at_s; });
+  std::size_t next_fault = 0;
+  nlohmann::json failures = nlohmann::json::array();
+  const auto t_run = Clock::now();
+  auto last_print = Clock::now();
+  double sim_t = 0.0, v = 0.0, energy = 0.0;
+  int act_L = 0, act_R = 0;
+  while (status == "ok" && !plant_done) {
+    seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(20));
+    for (auto& [t, h] : ticks.drain()) {
+      sim_t = t.t();
+      v = t.v_x();
+      energy = t.energy_J();
+      act_L = t.n_active_L();
+      act_R = t.n_active_R();
+    }
+    while (next_fault < faults.size() && sim_t >= faults[next_fault].at_s) {
+      const auto& f = faults[next_fault++];
+      auto it = std::find_if(kids.begin(), kids.end(), [&](const Child& c) { return c.name == f.target; });
+      nlohmann::json rec = {{"target", f.target}, {"action", f.action}, {"at_s", sim_t}};
+      if (it != kids.end() && f.action == "kill" && it->running) {
+        kill(it->pid, SIGKILL);
+        log.warn("fault: killed {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
+      } else if (it != kids.end() && f.action == "restart" && !it->running) {
+        spawn(*it, o.run_dir, env);
+        msg::MembershipEvent e;
+        e.seq(++member_seq);
+        e.name(it->name);
+        e.node_kind(it->kind);
+        e.side(it->side);
+        e.index(it->index);
+        e.kind(msg::MEMBER_STARTED);
+        e.wall_s(since(t_launch));
+        w_member->write(&e);
+        log.warn("fault: restarted {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
+      } else {
+        rec["skipped"] = "target not in a state for this action";
+      }
+      failures.push_back(rec);
+    }
+    reap(false);
+    if (g_interrupted.load()) status = "aborted: interrupted";
+    if (o.progress && since(last_print) >= 1.0) {
+      last_print = Clock::now();
+      const double rtf = sim_t / std::max(1e-9, since(t_run));
+      std::fprintf(stderr, "maptr: t=%7.1f/%.0f s  RTF %6.1f  v=%6.3f m/s  active L%d R%d  E=%.1f kJ\n", sim_t,
+                   sc.duration_s, rtf, v, act_L, act_R, energy / 1000.0);
+    }
+  }
+  const double run_wall_s = since(t_run);
+
+  // 3. End every process: the plant's last tick tells them; then SIGTERM, then SIGKILL.
+  auto all_done = [&] {
+    for (auto& c : kids)
+      if (c.running) return false;
+    return true;
+  };
+  auto wait_all = [&](double seconds) {
+    const auto t0 = Clock::now();
+    while (!all_done() && since(t0) < seconds) {
+      reap(true);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  };
+  wait_all(status == "ok" ? 10.0 : 0.5);
+  for (auto& c : kids)
+    if (c.running) kill(c.pid, SIGTERM);
+  wait_all(3.0);
+  for (auto& c : kids)
+    if (c.running) kill(c.pid, SIGKILL);
+  wait_all(5.0);
+  participant.reset();
+  comm::clean_stale_shm();
+
+  // 4. Summary.
+  nlohmann::json plant;
+  {
+    std::ifstream in(o.run_dir + "/plant.json");
+    if (in) try {
+        in >> plant;
+      } catch (...) {
+      }
+  }
+  const Child& pc = kids.front();
+  if (status == "ok") {
+    if (plant.is_null())
+      status = "aborted: the plant ended without results (exit " + std::to_string(pc.exit_code) + ", signal " +
+               std::to_string(pc.signal) + ")";
+    else
+      status = plant.value("status", "unknown");
+  }
+  summary["scenario"] = sc.name;
+  summary["scenario_file"] = sc.source;
+  summary["agents"] = sc.robot.agents;
+  summary["mode"] = sc.mode;
+  summary["motor"] = sc.robot.motor.type;
+  summary["gross_mass_kg"] = sc.robot.gross_mass_kg;
+  summary["tick_hz"] = sc.tick_hz;
+  summary["sim_time_s"] = plant.value("sim_time_s", sim_t);
+  summary["wall_time_s"] = run_wall_s;
+  summary["ticks"] = plant.value("ticks", 0);
+  summary["real_time_factor"] = plant.value("sim_time_s", sim_t) / std::max(1e-9, run_wall_s);
+  summary["distance_m"] = plant.value("distance_m", 0.0);
+  summary["energy_J"] = plant.value("energy_J", energy);
+  summary["mileage_m_per_J"] =
+      plant.value("energy_J", 0.0) > 0 ? plant.value("distance_m", 0.0) / plant.value("energy_J", 1.0) : 0.0;
+  summary["mean_active_agents"] = plant.value("mean_active_agents", 0.0);
+  summary["active_agents"] = plant.value("active_agents", nlohmann::json{{"L", act_L}, {"R", act_R}});
+  summary["battery_discharge_mAh"] = plant.value("battery_discharge_mAh", nlohmann::json{{"L", 0}, {"R", 0}});
+  summary["discovery_s"] = discovery_s;
+  summary["failures"] = failures;
+  summary["plant"] = plant;
+  nlohmann::json procs = nlohmann::json::array();
+  for (const auto& c : kids)
+    procs.push_back({{"name", c.name},
+                     {"pid", c.pid},
+                     {"exit_code", c.exit_code},
+                     {"signal", c.signal},
+                     {"max_rss_kB", c.max_rss_kB},
+                     {"starts", c.starts}});
+  summary["processes"] = procs;
+  const std::string trace = o.run_dir + "/trace.csv";
+  summary["trace_sha256"] = fs::exists(trace) ? sha256_of(trace) : "";
+  summary["status"] = status;
+  std::ofstream(o.run_dir + "/summary.json") << summary.dump(2) << "\n";
+  log.info("run ended: {}", status);
+  return summary;
+}
+
+std::string human_summary(const nlohmann::json& s) {
+  std::ostringstream os;
+  char buf[512];
+  long rss_max = 0;
+  double rss_sum = 0;
+  for (const auto& p : s["processes"]) {
+    rss_max = std::max<long>(rss_max, p.value("max_rss_kB", 0L));
+    rss_sum += p.value("max_rss_kB", 0L);
+  }
+  std::snprintf(buf, sizeof(buf),
+                "status      %s\n"
+                "scenario    %s: %d agents, motor %s, %.1f kg, mode %s\n"
+                "simulated   %.1f s in %.2f s wall (real-time factor %.1f); discovery %.2f s\n"
+                "distance    %.1f m, energy %.1f J, mileage %.4f m/J, mean active agents %.2f\n"
+                "battery     discharge L %.1f mAh, R %.1f mAh\n"
+                "processes   %zu, max RSS %.1f MB (mean %.1f MB)\n"
+                "trace       sha256 %s\n",
+                s.value("status", "").c_str(), s.value("scenario", "").c_str(), s.value("agents", 0),
+                s.value("motor", "").c_str(), s.value("gross_mass_kg", 0.0), s.value("mode", "").c_str(),
+                s.value("sim_time_s", 0.0), s.value("wall_time_s", 0.0), s.value("real_time_factor", 0.0),
+                s.value("discovery_s", 0.0), s.value("distance_m", 0.0), s.value("energy_J", 0.0),
+                s.value("mileage_m_per_J", 0.0), s.value("mean_active_agents", 0.0),
+                s["battery_discharge_mAh"].value("L", 0.0), s["battery_discharge_mAh"].value("R", 0.0),
+                s["processes"].size(), rss_max / 1024.0, s["processes"].empty() ? 0.0 : rss_sum / 1024.0 / s["processes"].size(),
+                s.value("trace_sha256", "").c_str());
+  os << buf;
+  return os.str();
+}
+
+}  // namespace maptr::deploy

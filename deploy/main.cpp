@@ -1,0 +1,139 @@
+// maptr: the command-line front end. `maptr run [SCENARIO.yaml] [overrides]` launches a fleet.
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+
+#include "deploy/launcher.hpp"
+#include "deploy/scenario.hpp"
+
+namespace fs = std::filesystem;
+using maptr::config::Scenario;
+using maptr::config::ScenarioError;
+
+namespace {
+
+std::string default_scenario() { return std::string(MAPTR_SOURCE_DIR) + "/deploy/scenarios/default.yaml"; }
+
+std::string bin_dir(const char* argv0) {
+  std::error_code ec;
+  fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) self = fs::absolute(argv0);
+  return self.parent_path().string();
+}
+
+std::string unique_run_dir(const std::string& base, const std::string& name) {
+  std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", std::localtime(&now));
+  std::string dir = base + "/" + stamp + "-" + name;
+  for (int i = 2; fs::exists(dir); ++i) dir = base + "/" + stamp + "-" + name + "-" + std::to_string(i);
+  return dir;
+}
+
+struct RunArgs {
+  std::string scenario;
+  int agents = 0;
+  double gross_kg = 0, duration = 0, speed = -1;
+  std::string motor, mode, out;
+  bool realtime = false, quiet = false;
+  int domain = -1, trace_every = 0;
+  std::vector<std::string> kills, restarts;
+};
+
+void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::string& action) {
+  for (const auto& spec : specs) {
+    const auto at = spec.find('@');
+    if (at == std::string::npos)
+      throw ScenarioError("--" + action + " " + spec + ": expected TARGET@SECONDS, e.g. L3@120");
+    maptr::config::FaultSpec f;
+    f.target = spec.substr(0, at);
+    f.action = action;
+    try {
+      f.at_s = std::stod(spec.substr(at + 1));
+    } catch (...) {
+      throw ScenarioError("--" + action + " " + spec + ": time '" + spec.substr(at + 1) + "' is not a number");
+    }
+    s.faults.push_back(f);
+  }
+}
+
+int cmd_run(const RunArgs& a, const char* argv0) {
+  Scenario s;
+  try {
+    s = maptr::config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
+    if (a.agents) s.robot.agents = a.agents;
+    if (a.gross_kg) s.robot.gross_mass_kg = a.gross_kg;
+    if (!a.motor.empty()) s.robot.motor = maptr::model::motor_type(a.motor);
+    if (!a.mode.empty()) s.mode = a.mode;
+    if (a.duration) s.duration_s = a.duration;
+    if (a.realtime) s.realtime = true;
+    if (a.trace_every) s.trace_every = a.trace_every;
+    if (a.speed >= 0)
+      for (auto& seg : s.trajectory.segments)
+        if (seg.type != "stop") seg.speed_mps = a.speed;
+    if (a.duration && s.trajectory.total_duration() < s.duration_s)
+      s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
+    add_faults(s, a.kills, "kill");
+    add_faults(s, a.restarts, "restart");
+    s.validate();
+  } catch (const ScenarioError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 2;
+  } catch (const maptr::model::ParamError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 2;
+  }
+  maptr::deploy::LaunchOptions o;
+  o.scenario = s;
+  o.run_dir = a.out.empty() ? unique_run_dir("runs", s.name) : a.out;
+  o.bin_dir = bin_dir(argv0);
+  o.progress = !a.quiet;
+  o.domain = a.domain >= 0 ? a.domain : (std::getenv("MAPTR_DOMAIN") ? std::atoi(std::getenv("MAPTR_DOMAIN")) : 0);
+  fs::create_directories(o.run_dir + "/logs");
+  auto log = std::make_shared<spdlog::logger>(
+      "launcher", std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.run_dir + "/logs/launcher.log"));
+  log->flush_on(spdlog::level::info);
+  std::cerr << "maptr: run folder " << o.run_dir << "\n";
+  nlohmann::json summary;
+  try {
+    summary = maptr::deploy::launch(o, *log);
+  } catch (const std::exception& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << maptr::deploy::human_summary(summary);
+  std::cout << "results     " << o.run_dir << "/summary.json, trace.csv, logs/\n";
+  const std::string st = summary.value("status", "");
+  return st == "ok" ? 0 : (st.rfind("degraded", 0) == 0 ? 3 : 1);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"MAPTR: the multi-agent payload transport robot as a distributed DDS system"};
+  app.require_subcommand(1);
+  RunArgs ra;
+  auto* run = app.add_subcommand("run", "launch the fleet (plant, central, 2 groups, N agents) for one scenario");
+  run->add_option("scenario", ra.scenario, "scenario YAML (default: deploy/scenarios/default.yaml)");
+  run->add_option("--agents", ra.agents, "number of agents N (multiple of 4)");
+  run->add_option("--gross-kg", ra.gross_kg, "gross mass, kg");
+  run->add_option("--motor", ra.motor, "motor type I or II");
+  run->add_option("--mode", ra.mode, "all (every agent, the paper's NO) or ec (energy-conscious)");
+  run->add_option("--duration", ra.duration, "simulated seconds");
+  run->add_option("--speed", ra.speed, "speed of every moving segment, m/s");
+  run->add_flag("--realtime", ra.realtime, "pace ticks to the wall clock");
+  run->add_option("--out", ra.out, "results folder (default runs/<date>-<scenario>)");
+  run->add_option("--domain", ra.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
+  run->add_option("--trace-every", ra.trace_every, "write every n-th tick to trace.csv");
+  run->add_option("--kill", ra.kills, "kill a process at a simulated time, e.g. L3@120 (repeatable)");
+  run->add_option("--restart", ra.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
+  run->add_flag("--quiet", ra.quiet, "no progress lines");
+  CLI11_PARSE(app, argc, argv);
+  if (run->parsed()) return cmd_run(ra, argv[0]);
+  return 2;
+}

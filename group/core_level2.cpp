@@ -1,0 +1,208 @@
+#include "group/core_level2.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <coin/IpIpoptApplication.hpp>
+#include <coin/IpSolveStatistics.hpp>
+#include <coin/IpTNLP.hpp>
+#include <vector>
+
+namespace maptr::group {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+constexpr double kFdStep = 1e-5;        ///< agents, central finite-difference step
+constexpr double kFdHessStep = 1e-3;    ///< agents, second-difference step (noise / h^2 ~ 1e-8)
+constexpr double kIntegerWiden = 1e-3;  ///< agents, see the header ("Integer choice")
+
+/// The relaxed Level-2 NLP: one variable n, one constraint g(n) = feasibility_voltage(n).
+class Level2Nlp : public Ipopt::TNLP {
+ public:
+  Level2Nlp(const model::Level2Problem& p, double start, bool fd_hessian)
+      : p_(p), start_(start), x_(start), fd_hessian_(fd_hessian) {}
+
+  double x() const { return x_; }
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
+                    IndexStyleEnum& index_style) override {
+    n = 1;
+    m = 1;
+    nnz_jac_g = 1;
+    nnz_h_lag = fd_hessian_ ? 1 : 0;
+    index_style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index, Number* x_l, Number* x_u, Index, Number* g_l, Number* g_u) override {
+    x_l[0] = 1.0;
+    x_u[0] = static_cast<double>(p_.live);
+    g_l[0] = -2e19;  // no lower bound (Ipopt's default nlp_lower_bound_inf is -1e19)
+    g_u[0] = p_.battery_V;
+    return true;
+  }
+
+  bool get_starting_point(Index, bool init_x, Number* x, bool init_z, Number*, Number*, Index,
+                          bool init_lambda, Number*) override {
+    if (init_z || init_lambda) return false;  // only a primal start is provided
+    if (init_x) x[0] = start_;
+    return true;
+  }
+
+  bool eval_f(Index, const Number* x, bool, Number& obj) override {
+    obj = -model::level2_objective(p_, x[0]);
+    return std::isfinite(obj);
+  }
+
+  bool eval_grad_f(Index, const Number* x, bool, Number* grad) override {
+    const double h = kFdStep;
+    grad[0] = -(model::level2_objective(p_, x[0] + h) - model::level2_objective(p_, x[0] - h)) / (2.0 * h);
+    return std::isfinite(grad[0]);
+  }
+
+  bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
+    g[0] = model::feasibility_voltage(p_, x[0]);
+    return std::isfinite(g[0]);
+  }
+
+  bool eval_jac_g(Index, const Number* x, bool, Index, Index, Index* i_row, Index* j_col,
+                  Number* values) override {
+    if (values == nullptr) {
+      i_row[0] = 0;
+      j_col[0] = 0;
+      return true;
+    }
+    const double h = kFdStep;
+    values[0] =
+        (model::feasibility_voltage(p_, x[0] + h) - model::feasibility_voltage(p_, x[0] - h)) / (2.0 * h);
+    return std::isfinite(values[0]);
+  }
+
+  /// Exact 1x1 Hessian of the Lagrangian, obj_factor f'' + lambda g'', by second differences.
+  bool eval_h(Index, const Number* x, bool, Number obj_factor, Index, const Number* lambda, bool, Index,
+              Index* i_row, Index* j_col, Number* values) override {
+    if (!fd_hessian_) return false;
+    if (values == nullptr) {
+      i_row[0] = 0;
+      j_col[0] = 0;
+      return true;
+    }
+    const double h = kFdHessStep, x0 = x[0];
+    const double j2 = (model::level2_objective(p_, x0 + h) - 2.0 * model::level2_objective(p_, x0) +
+                       model::level2_objective(p_, x0 - h)) /
+                      (h * h);
+    const double g2 = (model::feasibility_voltage(p_, x0 + h) - 2.0 * model::feasibility_voltage(p_, x0) +
+                       model::feasibility_voltage(p_, x0 - h)) /
+                      (h * h);
+    values[0] = -obj_factor * j2 + lambda[0] * g2;
+    return std::isfinite(values[0]);
+  }
+
+  void finalize_solution(Ipopt::SolverReturn, Index, const Number* x, const Number*, const Number*, Index,
+                         const Number*, const Number*, Number, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    if (x != nullptr && std::isfinite(x[0])) x_ = x[0];
+  }
+
+ private:
+  const model::Level2Problem& p_;
+  double start_;
+  double x_;
+  bool fd_hessian_;
+};
+
+}  // namespace
+
+void Level2SolverConfig::validate() const {
+  if (!(std::isfinite(tol) && tol > 0.0))
+    throw model::ParamError("level2_solver.tol = " + std::to_string(tol) + ": must be positive");
+  if (max_iter < 1)
+    throw model::ParamError("level2_solver.max_iter = " + std::to_string(max_iter) + ": must be >= 1");
+}
+
+struct Level2Solver::Impl {
+  Level2SolverConfig config;
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app;
+  bool init_ok = false;
+  bool has_warm = false;
+  double warm = 0.0;  ///< previous relaxed solution, agents
+};
+
+Level2Solver::Level2Solver(Level2SolverConfig config) : impl_(std::make_unique<Impl>()) {
+  config.validate();
+  impl_->config = config;
+  impl_->app = IpoptApplicationFactory();
+  Ipopt::SmartPtr<Ipopt::OptionsList> o = impl_->app->Options();
+  o->SetIntegerValue("print_level", 0);
+  o->SetStringValue("sb", "yes");  // no banner
+  o->SetNumericValue("tol", config.tol);
+  o->SetStringValue("hessian_approximation", config.fd_hessian ? "exact" : "limited-memory");
+  o->SetIntegerValue("max_iter", config.max_iter);
+  // With limited-memory Ipopt defaults to the adaptive barrier update, whose quality-function
+  // oracle costs several extra MUMPS solves per iteration; monotone is cheaper here.
+  o->SetStringValue("mu_strategy", "monotone");
+  impl_->init_ok = impl_->app->Initialize("") == Ipopt::Solve_Succeeded;  // "": no ipopt.opt file
+}
+
+Level2Solver::~Level2Solver() = default;
+
+void Level2Solver::reset_warm_start() { impl_->has_warm = false; }
+
+Level2Result Level2Solver::solve(const model::Level2Problem& p) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Level2Result res;
+  const int live = p.live;
+
+  if (live <= 1) {
+    res.n_active = std::max(live, 0);
+    res.n_relaxed = res.n_active;
+    res.feasible = live == 1 && model::level2_feasible(p, 1.0);
+    res.objective = live == 1 ? model::level2_objective(p, 1.0) : 0.0;
+    res.ipopt_status = kLevel2NotSolved;
+  } else {
+    const double lo = 1.0, hi = live;
+    const double start = std::clamp(impl_->has_warm ? impl_->warm : 0.5 * (lo + hi), lo, hi);
+    double x = start;
+    if (impl_->init_ok) {
+      Ipopt::SmartPtr<Level2Nlp> nlp = new Level2Nlp(p, start, impl_->config.fd_hessian);
+      res.ipopt_status = static_cast<int>(impl_->app->OptimizeTNLP(nlp));
+      x = nlp->x();
+      Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = impl_->app->Statistics();
+      if (Ipopt::IsValid(stats)) res.iterations = stats->IterationCount();
+    } else {
+      res.ipopt_status = kLevel2InitFailed;
+    }
+    x = std::clamp(x, lo, hi);
+    res.n_relaxed = x;
+
+    bool found = false;
+    const int k_lo = std::max(1, static_cast<int>(std::floor(x - kIntegerWiden)));
+    const int k_hi = std::min(live, static_cast<int>(std::ceil(x + kIntegerWiden)));
+    for (int k = k_lo; k <= k_hi; ++k) {
+      if (!model::level2_feasible(p, k)) continue;
+      const double j = model::level2_objective(p, k);
+      if (!found || j > res.objective) {  // strict: ties keep the smaller n
+        res.n_active = k;
+        res.objective = j;
+        found = true;
+      }
+    }
+    if (found) {
+      res.feasible = true;
+      impl_->warm = x;
+      impl_->has_warm = true;
+    } else {
+      res.n_active = live;
+      res.feasible = model::level2_feasible(p, live);
+      res.objective = model::level2_objective(p, live);
+    }
+  }
+
+  res.solve_time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace maptr::group

@@ -1,0 +1,24 @@
+#pragma once
+// DDS node of a group controller: reads Tick, runs GroupCore, answers GroupStatus.
+#include <spdlog/logger.h>
+
+#include <memory>
+
+#include "comm/process.hpp"
+#include "group/core_group.hpp"
+
+namespace maptr::group {
+
+class GroupNode {
+ public:
+  GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<spdlog::logger> log);
+  int run();
+
+ private:
+  const comm::ProcessArgs& args_;
+  int side_;
+  std::shared_ptr<spdlog::logger> log_;
+  GroupCore core_;
+};
+
+}  // namespace maptr::group

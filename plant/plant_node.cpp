@@ -1,0 +1,315 @@
+#include "plant/plant_node.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "idl/maptrPubSubTypes.h"
+#include "plant/plant_core.hpp"
+
+namespace maptr::plant {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Handle = eprosima::fastrtps::rtps::InstanceHandle_t;
+
+struct Member {
+  bool live = true;        ///< waited for at each tick
+  bool answered = false;   ///< answered the current tick
+  Handle writer{};         ///< DDS writer, learnt from its first sample
+  bool writer_known = false;
+};
+
+int count(const std::vector<uint8_t>& m) {
+  int n = 0;
+  for (auto b : m) n += b ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
+PlantNode::PlantNode(const comm::ProcessArgs& args, std::shared_ptr<spdlog::logger> log)
+    : args_(args), log_(std::move(log)) {}
+
+int PlantNode::run() {
+  const config::Scenario& sc = args_.scenario;
+  const int per_side = sc.robot.per_side();
+  const int n_agents = sc.robot.agents;
+  auto& stop = comm::stop_flag();
+
+  comm::Signal signal;
+  comm::Inbox<msg::AgentReply> replies(signal);
+  comm::Inbox<msg::GroupStatus> groups(signal);
+  comm::Inbox<msg::CentralCommand> centrals(signal);
+  comm::Inbox<msg::MembershipEvent> members(signal);
+  comm::Inbox<msg::Control> controls(signal);
+  comm::MatchCounter tick_match(&signal);
+  comm::Participant p("plant", args_.dds);
+  auto* w_tick = p.writer(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match);
+  p.reader(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &replies);
+  p.reader(p.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), comm::Profile::kStream, &groups);
+  p.reader(p.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), comm::Profile::kStream, &centrals);
+  p.reader(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched, &members);
+  p.reader(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched, &controls);
+  auto* w_ready = p.writer(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched);
+
+  // 1. Discovery: every endpoint of the fleet matched, then tell the launcher.
+  const auto t_launch = Clock::now();
+  uint64_t seen = signal.count();
+  bool announced = false, started = false;
+  while (!stop.load() && !started) {
+    seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(200));
+    if (!announced && replies.matched() >= n_agents && groups.matched() >= 2 && centrals.matched() >= 1 &&
+        tick_match.matched() >= n_agents + 3) {
+      msg::NodeReady r;
+      r.name("plant");
+      r.kind(msg::NODE_PLANT);
+      r.pid(static_cast<uint32_t>(getpid()));
+      r.ready(true);
+      w_ready->write(&r);
+      announced = true;
+      log_->info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,
+                 std::chrono::duration<double>(Clock::now() - t_launch).count());
+    }
+    for (auto& [c, h] : controls.drain())
+      if (c.command() == msg::CONTROL_START) started = true;
+  }
+  if (!started) return 0;
+
+  // 2. Lock-step.
+  PlantCore core(sc, args_.run_dir + "/trace.csv");
+  std::vector<Member> agent[2] = {std::vector<Member>(per_side), std::vector<Member>(per_side)};
+  Member group[2], central;
+  std::vector<AgentApplied> applied[2] = {std::vector<AgentApplied>(per_side), std::vector<AgentApplied>(per_side)};
+  std::vector<uint8_t> mask[2] = {std::vector<uint8_t>(per_side, 0), std::vector<uint8_t>(per_side, 0)};
+  long long group_stamp[2] = {-1, -1}, central_stamp = -1;
+  double ref_L = 0.0, ref_R = 0.0;
+  int relay_L = 0, relay_R = 0;
+  uint64_t rejected = 0, missed_deadlines = 0, declared_dead = 0;
+  std::vector<std::string> events;
+  // Deadline: the last resort only; it grows with the fleet (slow is not dead).
+  const double deadline_s = 5.0 + 0.05 * n_agents;
+  const long long total = sc.ticks();
+  const auto wall0 = Clock::now();
+  std::string status = "ok";
+
+  auto live_mask = [&](int s) {
+    std::vector<uint8_t> m(per_side);
+    for (int j = 0; j < per_side; ++j) m[j] = agent[s][j].live ? 1 : 0;
+    return m;
+  };
+  auto publish = [&](uint8_t run_state) {
+    msg::PlantTick t;
+    t.tick(static_cast<uint64_t>(core.tick()));
+    t.t(core.t());
+    t.dt(sc.dt());
+    const auto& x = core.state();
+    t.x(x[model::kX]);
+    t.y(x[model::kY]);
+    t.theta(x[model::kTheta]);
+    t.v_x(x[model::kVx]);
+    t.w(x[model::kW]);
+    t.phidot_L(core.phidot(0));
+    t.phidot_R(core.phidot(1));
+    t.battery_V_L(core.battery_V(0));
+    t.battery_V_R(core.battery_V(1));
+    t.discharge_mAh_L(x[model::kChargeL]);
+    t.discharge_mAh_R(x[model::kChargeR]);
+    t.energy_J(x[model::kEnergyL] + x[model::kEnergyR]);
+    t.distance_m(x[model::kDistance]);
+    t.phidot_ref_L(ref_L);
+    t.phidot_ref_R(ref_R);
+    t.central_stamp(central_stamp);
+    t.active_L(mask[0]);
+    t.active_R(mask[1]);
+    t.group_stamp_L(group_stamp[0]);
+    t.group_stamp_R(group_stamp[1]);
+    t.live_L(live_mask(0));
+    t.live_R(live_mask(1));
+    t.n_active_L(static_cast<uint16_t>(count(mask[0])));
+    t.n_active_R(static_cast<uint16_t>(count(mask[1])));
+    t.relay_count_L(static_cast<uint16_t>(relay_L));
+    t.relay_count_R(static_cast<uint16_t>(relay_R));
+    t.run_state(run_state);
+    w_tick->write(&t);
+  };
+  auto mark_dead_by_name = [&](const std::string& name, const char* why) {
+    int s = 0, j = 0;
+    if (config::parse_agent_name(name, s, j) && j < per_side) {
+      if (agent[s][j].live) events.push_back(name + " " + why + " at t=" + std::to_string(core.t()));
+      agent[s][j].live = false;
+    } else if (name == "group-L" || name == "group-R") {
+      group[name == "group-L" ? 0 : 1].live = false;
+    } else if (name == "central") {
+      central.live = false;
+    }
+    log_->warn("{} {} at t={:.2f} s", name, why, core.t());
+  };
+
+  while (!stop.load()) {
+    const long long k = core.tick();
+    const bool last = k >= total;
+    publish(last ? msg::RUN_FINISHED : msg::RUN_RUNNING);
+    if (last) break;
+    for (int s = 0; s < 2; ++s) {
+      for (auto& m : agent[s]) m.answered = false;
+      for (auto& a : applied[s]) a = AgentApplied{};
+      group[s].answered = false;
+    }
+    central.answered = false;
+    const auto tick_start = Clock::now();
+    bool got_central = false, got_group[2] = {false, false};
+    for (;;) {
+      // Membership first, then the samples.
+      for (auto& [e, h] : members.drain()) {
+        if (e.kind() == msg::MEMBER_DIED) mark_dead_by_name(e.name(), "died (launcher)");
+      }
+      for (const auto& ev : replies.drain_liveliness())
+        if (!ev.alive)
+          for (int s = 0; s < 2; ++s)
+            for (int j = 0; j < per_side; ++j)
+              if (agent[s][j].writer_known && agent[s][j].writer == ev.writer && agent[s][j].live)
+                mark_dead_by_name(config::agent_name(s, j), "lost (DDS liveliness)");
+      for (const auto& ev : groups.drain_liveliness())
+        if (!ev.alive)
+          for (int s = 0; s < 2; ++s)
+            if (group[s].writer_known && group[s].writer == ev.writer) group[s].live = false;
+      for (const auto& ev : centrals.drain_liveliness())
+        if (!ev.alive && central.writer_known && central.writer == ev.writer) central.live = false;
+
+      for (auto& [r, h] : replies.drain()) {
+        const bool ok = r.side() <= 1 && r.index() < per_side && std::isfinite(r.voltage_V()) &&
+                        std::isfinite(r.current_A()) && std::isfinite(r.efficiency()) && r.voltage_V() >= 0.0 &&
+                        r.voltage_V() <= core.battery_V(r.side()) + 1e-9 && r.state() <= msg::AGENT_STOPPING;
+        if (!ok || static_cast<long long>(r.tick()) != k) {
+          ++rejected;
+          if (!ok) log_->warn("rejected a malformed agent reply (side {}, index {}, V {})", r.side(), r.index(), r.voltage_V());
+          continue;
+        }
+        Member& m = agent[r.side()][r.index()];
+        if (!m.live) log_->info("{} answers again: re-admitted", config::agent_name(r.side(), r.index()));
+        m.live = true;
+        m.answered = true;
+        m.writer = h;
+        m.writer_known = true;
+        AgentApplied& a = applied[r.side()][r.index()];
+        a.replied = true;
+        a.drives = r.state() == msg::AGENT_ACTIVE || r.state() == msg::AGENT_HOLDING || r.state() == msg::AGENT_STOPPING;
+        a.voltage_V = r.voltage_V();
+        a.current_A = r.current_A();
+        a.efficiency = r.efficiency();
+      }
+      for (auto& [g, h] : groups.drain()) {
+        const bool ok = g.side() <= 1 && g.active().size() == static_cast<std::size_t>(per_side);
+        if (!ok || static_cast<long long>(g.tick()) != k) {
+          ++rejected;
+          continue;
+        }
+        const int s = g.side();
+        group[s].live = group[s].answered = true;
+        group[s].writer = h;
+        group[s].writer_known = true;
+        got_group[s] = true;
+        mask[s] = g.active();
+        for (int j = 0; j < per_side; ++j)
+          if (!agent[s][j].live) mask[s][j] = 0;  // never trust an assignment of a dead agent
+        group_stamp[s] = k;
+      }
+      for (auto& [c, h] : centrals.drain()) {
+        const bool ok = std::isfinite(c.phidot_ref_L()) && std::isfinite(c.phidot_ref_R()) &&
+                        std::fabs(c.phidot_ref_L()) < 1e4 && std::fabs(c.phidot_ref_R()) < 1e4;
+        if (!ok || static_cast<long long>(c.tick()) != k) {
+          ++rejected;
+          continue;
+        }
+        central.live = central.answered = true;
+        central.writer = h;
+        central.writer_known = true;
+        got_central = true;
+        ref_L = c.phidot_ref_L();
+        ref_R = c.phidot_ref_R();
+        relay_L = c.relay_count_for_L();
+        relay_R = c.relay_count_for_R();
+        central_stamp = k;
+      }
+      bool complete = (!central.live || central.answered) && (!group[0].live || group[0].answered) &&
+                      (!group[1].live || group[1].answered);
+      for (int s = 0; s < 2 && complete; ++s)
+        for (const auto& m : agent[s])
+          if (m.live && !m.answered) complete = false;
+      if (complete || stop.load()) break;
+      if (Clock::now() - tick_start > std::chrono::duration<double>(deadline_s)) {
+        for (int s = 0; s < 2; ++s)
+          for (int j = 0; j < per_side; ++j)
+            if (agent[s][j].live && !agent[s][j].answered) {
+              mark_dead_by_name(config::agent_name(s, j), "missed the tick deadline");
+              ++declared_dead;
+            }
+        for (int s = 0; s < 2; ++s)
+          if (group[s].live && !group[s].answered) group[s].live = false;
+        if (central.live && !central.answered) central.live = false;
+        continue;
+      }
+      seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(50));
+    }
+    if (stop.load()) {
+      status = "aborted: stop signal";
+      break;
+    }
+    (void)got_central;
+    (void)got_group;
+    int live_n[2] = {count(live_mask(0)), count(live_mask(1))};
+    core.advance(applied[0], applied[1], ref_L, ref_R, live_n[0], live_n[1]);
+    if (sc.realtime) {
+      const auto due = wall0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(core.t()));
+      if (Clock::now() > due)
+        ++missed_deadlines;
+      else
+        std::this_thread::sleep_until(due);
+    }
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+  // A side with no live agent, or a speed that could not be held, is a degraded run.
+  const int live_end[2] = {count(live_mask(0)), count(live_mask(1))};
+  if (status == "ok") {
+    if (live_end[0] == 0 || live_end[1] == 0)
+      status = std::string("degraded: side ") + (live_end[0] == 0 ? "L" : "R") + " has no live agent; the robot stopped";
+    else if (core.max_speed_error_pct() > 5.0)
+      status = "degraded: speed error reached " + std::to_string(core.max_speed_error_pct()) + "% of the reference";
+  }
+  const auto& x = core.state();
+  nlohmann::json j;
+  j["status"] = status;
+  j["sim_time_s"] = core.t();
+  j["ticks"] = core.tick();
+  j["tick_hz"] = sc.tick_hz;
+  j["loop_wall_s"] = wall;
+  j["distance_m"] = x[model::kDistance];
+  j["energy_J"] = x[model::kEnergyL] + x[model::kEnergyR];
+  j["energy_side_J"] = {{"L", x[model::kEnergyL]}, {"R", x[model::kEnergyR]}};
+  j["mean_active_agents"] = core.mean_active_agents();
+  j["active_agents"] = {{"L", core.last_active(0)}, {"R", core.last_active(1)}};
+  j["live_agents"] = {{"L", live_end[0]}, {"R", live_end[1]}};
+  j["battery_discharge_mAh"] = {{"L", x[model::kChargeL]}, {"R", x[model::kChargeR]}};
+  j["battery_V"] = {{"L", core.battery_V(0)}, {"R", core.battery_V(1)}};
+  j["pose"] = {{"x_m", x[model::kX]}, {"y_m", x[model::kY]}, {"theta_rad", x[model::kTheta]}};
+  j["final_speed_mps"] = x[model::kVx];
+  j["max_speed_error_pct"] = core.max_speed_error_pct();
+  j["rms_speed_error_pct"] = core.rms_speed_error_pct();
+  j["rejected_samples"] = rejected;
+  j["missed_deadlines"] = missed_deadlines;
+  j["declared_dead_by_deadline"] = declared_dead;
+  j["membership_events"] = events;
+  std::ofstream(args_.run_dir + "/plant.json") << j.dump(2) << "\n";
+  log_->info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", status, core.tick(), core.t(), wall);
+  // Give the last Tick time to reach every reader before the participant goes away.
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  return status.rfind("aborted", 0) == 0 ? 1 : 0;
+}
+
+}  // namespace maptr::plant
