@@ -5,6 +5,7 @@
 namespace maptr::model {
 
 double Pid::update(double e, double dt, double v_max) {
+  if (!(dt > 0.0)) return 0.0;  // no time passed: no valid control step (never NaN)
   const double de = first_ ? 0.0 : (e - prev_error_) / dt;
   first_ = false;
   prev_error_ = e;

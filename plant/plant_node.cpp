@@ -279,8 +279,12 @@ int PlantNode::run() {
   if (status == "ok") {
     if (live_end[0] == 0 || live_end[1] == 0)
       status = std::string("degraded: side ") + (live_end[0] == 0 ? "L" : "R") + " has no live agent; the robot stopped";
-    else if (core.max_speed_error_pct() > 5.0)
-      status = "degraded: speed error reached " + std::to_string(core.max_speed_error_pct()) + "% of the reference";
+    else {
+      const double ref_v = 0.5 * (ref_L + ref_R) * sc.robot.wheel_radius_m;
+      const double err = ref_v > 0.0 ? 100.0 * std::fabs(core.state()[model::kVx] - ref_v) / ref_v : 0.0;
+      if (err > 5.0)
+        status = "degraded: the robot ended " + std::to_string(err) + "% off its reference speed";
+    }
   }
   const auto& x = core.state();
   nlohmann::json j;

@@ -1,0 +1,95 @@
+#pragma once
+// Runs the real `maptr` CLI (and so the real fleet of processes) for integration tests: a
+// private DDS domain, a temporary results folder, a wall-clock timeout after which the
+// launcher is killed by its PID (its children die with it), and the folder removed afterwards.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace maptr::testing {
+
+struct CliResult {
+  int exit_code = -1;
+  bool timed_out = false;
+  std::string output;        ///< stdout + stderr
+  nlohmann::json summary;    ///< summary.json when written
+  std::string run_dir;
+};
+
+/// A fresh folder under the system temp dir, removed on destruction.
+class TempDir {
+ public:
+  TempDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "maptr-test-XXXXXX").string();
+    path_ = mkdtemp(tmpl.data());
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+/// A DDS domain no other test run uses at the same time (derived from the PID and a counter).
+inline int private_domain() {
+  static int counter = 0;
+  return 100 + (static_cast<int>(getpid()) * 7 + counter++) % 120;
+}
+
+inline CliResult run_cli(std::vector<std::string> args, const std::string& run_dir, double timeout_s) {
+  CliResult r;
+  r.run_dir = run_dir;
+  const std::string log = run_dir + ".out";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    std::vector<char*> argv;
+    std::string bin = std::string(MAPTR_BIN_DIR) + "/maptr";
+    argv.push_back(bin.data());
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(bin.c_str(), argv.data());
+    _exit(127);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  int st = 0;
+  for (;;) {
+    const pid_t w = waitpid(pid, &st, WNOHANG);
+    if (w == pid) break;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > timeout_s) {
+      r.timed_out = true;
+      kill(pid, SIGKILL);  // the fleet dies with it (PR_SET_PDEATHSIG)
+      waitpid(pid, &st, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  r.exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.output = ss.str();
+  std::filesystem::remove(log);
+  std::ifstream js(run_dir + "/summary.json");
+  if (js) js >> r.summary;
+  return r;
+}
+
+inline void write_file(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+}  // namespace maptr::testing
