@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
 namespace maptr::model {
 
 std::vector<uint8_t> allocate(const AllocationInput& in) {
   const std::size_t n = in.live.size();
+  if (in.distance_m.size() != n) throw std::invalid_argument("allocate: distance_m and live differ in length");
   std::vector<std::size_t> cool, hot;
   for (std::size_t j = 0; j < n; ++j) {
     if (!in.live[j]) continue;

@@ -59,8 +59,9 @@ MotorParams motor_type(const std::string& name) {
 }
 
 void BatteryParams::validate() const {
-  require(std::isfinite(h) && std::isfinite(w) && std::isfinite(y) && std::isfinite(z),
-          "battery", "h,w,y,z", "coefficients must be finite");
+  require(std::isfinite(h), "battery.h", fmt(h), "must be finite");
+  require(std::isfinite(w), "battery.w", fmt(w), "must be finite");
+  require(std::isfinite(z), "battery.z", fmt(z), "must be finite");
   positive(y, "battery.y");
   positive(capacity_mAh, "battery.capacity_mAh");
 }

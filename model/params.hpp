@@ -54,7 +54,7 @@ struct RobotParams {
   double mu_lateral = 0.1;         ///< mu_l
   double k_s = 100.0;              ///< friction smoothing constant, s/m (not in the paper)
   double gravity = 9.81;           ///< m/s^2
-  /// I_zz in kg m^2; <= 0 means derived: plate of 4b x a carrying the gross mass,
+  /// I_zz in kg m^2; <= 0 means derived: plate of (N/4) b x a carrying the gross mass,
   /// m ((N/4 b)^2 + a^2) / 12.
   double yaw_inertia_kgm2 = 0.0;
   /// Wheel inertia in kg m^2; <= 0 means derived: disc m_w r^2 / 2.
