@@ -48,7 +48,8 @@ int AgentNode::run() {
   auto* w_ready = p.writer(t_ready, comm::Profile::kLatched);
 
   const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
-  bool announced = false, plant_seen = false;
+  bool announced = false;
+  comm::PlantWatch plant;
   long long last_tick = -1;
   uint64_t rejected = 0;
   uint64_t seen = signal.count();
@@ -56,21 +57,13 @@ int AgentNode::run() {
   while (!stop.load()) {
     seen = signal.wait_until(seen, std::chrono::steady_clock::now() + std::chrono::milliseconds(200));
     if (!announced && ticks.matched() >= 1 && reply_match.matched() >= 1) {
-      msg::NodeReady r;
-      r.name(args_.name);
-      r.kind(msg::NODE_AGENT);
-      r.pid(static_cast<uint32_t>(getpid()));
-      r.ready(true);
-      w_ready->write(&r);
+      comm::announce_ready(w_ready, args_.name, msg::NODE_AGENT);
       announced = true;
       log_->info("matched the plant: ready");
     }
-    for (const auto& ev : ticks.drain_liveliness()) {
-      if (ev.alive) plant_seen = true;
-      if (!ev.alive && plant_seen) {
-        log_->error("lost the plant (liveliness): exiting");
-        return 3;
-      }
+    if (plant.lost(ticks.drain_liveliness())) {
+      log_->error("lost the plant (liveliness): exiting");
+      return 3;
     }
     for (auto& [t, handle] : ticks.drain()) {
       if (!tick_ok(t, per_side) || static_cast<long long>(t.tick()) <= last_tick) {

@@ -8,6 +8,8 @@
 
 #include <cstdlib>
 #include <stdexcept>
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -179,12 +181,22 @@ int clean_stale_shm() {
   const pid_t pid = fork();
   if (pid < 0) return -1;
   if (pid == 0) {
-    if (FILE* f = freopen("/dev/null", "w", stdout)) (void)f;
-    if (FILE* f = freopen("/dev/null", "w", stderr)) (void)f;
+    // Only async-signal-safe calls between fork and exec (the parent has DDS threads).
+    const int fd = open("/dev/null", O_WRONLY);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+    }
     execlp("fastdds", "fastdds", "shm", "clean", static_cast<char*>(nullptr));
     _exit(127);
   }
+  // Bounded wait: a cleaner that hangs must not hang the caller.
   int status = 0;
+  for (int i = 0; i < 300; ++i) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    usleep(20000);
+  }
+  kill(pid, SIGKILL);
   waitpid(pid, &status, 0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }

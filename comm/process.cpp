@@ -57,3 +57,20 @@ std::shared_ptr<spdlog::logger> make_logger(const ProcessArgs& a) {
 }
 
 }  // namespace maptr::comm
+
+#include <unistd.h>
+
+#include "idl/maptrPubSubTypes.h"
+
+namespace maptr::comm {
+
+void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, uint8_t kind) {
+  msg::NodeReady r;
+  r.name(name);
+  r.kind(kind);
+  r.pid(static_cast<uint32_t>(getpid()));
+  r.ready(true);
+  w->write(&r);
+}
+
+}  // namespace maptr::comm

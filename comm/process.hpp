@@ -33,3 +33,47 @@ std::shared_ptr<spdlog::logger> make_logger(const ProcessArgs& a);
 std::atomic<bool>& stop_flag();
 
 }  // namespace maptr::comm
+
+namespace maptr::comm {
+
+/// Publishes this process's NodeReady (once every needed endpoint is matched).
+void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, uint8_t kind);
+
+/// Follows the plant's liveliness on a reader of its ticks: lost() turns true once the plant
+/// was seen alive and then lost (its lease expired: it was killed).
+class PlantWatch {
+ public:
+  bool lost(const std::vector<LivelinessEvent>& events) {
+    for (const auto& e : events) {
+      if (e.alive) seen_ = true;
+      if (!e.alive && seen_) lost_ = true;
+    }
+    return lost_;
+  }
+
+ private:
+  bool seen_ = false, lost_ = false;
+};
+
+/// main() of a process whose name is fixed (plant, central): parses the shared arguments,
+/// sets up the logger and runs Node(args, log).run(), turning exceptions into exit code 1.
+template <class Node>
+int run_named_process(int argc, char** argv, const std::string& name, const std::string& what) {
+  std::vector<std::string> store{"--name", name};
+  std::vector<char*> args(argv, argv + argc);
+  bool named = false;
+  for (int i = 0; i < argc; ++i)
+    if (std::string(argv[i]) == "--name") named = true;
+  if (!named)
+    for (auto& s : store) args.push_back(s.data());
+  auto pa = parse_process_args(static_cast<int>(args.size()), args.data(), what);
+  auto log = make_logger(pa);
+  try {
+    return Node(pa, log).run();
+  } catch (const std::exception& e) {
+    log->critical("{}", e.what());
+    return 1;
+  }
+}
+
+}  // namespace maptr::comm

@@ -9,6 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+extern char** environ;
+
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
@@ -70,7 +72,21 @@ std::string sha256_of(const std::string& path) {
 }
 
 void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std::string>& env) {
+  // Everything the child needs is prepared before fork(): between fork and exec the child of
+  // a multi-threaded process may only make async-signal-safe calls (no allocation).
   const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
+  std::vector<std::string> env_store;
+  for (char** e = environ; *e; ++e) {
+    const std::string kv = *e;
+    if (!env.count(kv.substr(0, kv.find('=')))) env_store.push_back(kv);
+  }
+  for (const auto& [k, v] : env) env_store.push_back(k + "=" + v);
+  std::vector<char*> envp, argv;
+  for (auto& e : env_store) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  argv.push_back(const_cast<char*>(c.binary.c_str()));
+  for (auto& a : c.args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
   const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed for " + c.name);
@@ -84,12 +100,7 @@ void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std
       dup2(fd, 2);
       close(fd);
     }
-    for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(c.binary.c_str()));
-    for (auto& a : c.args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(c.binary.c_str(), argv.data());
+    execve(argv[0], argv.data(), envp.data());
     _exit(127);
   }
   c.pid = pid;
@@ -174,6 +185,17 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     return nullptr;
   };
   bool plant_done = false;
+  auto publish_member = [&](const Child& c, uint8_t kind) {
+    msg::MembershipEvent e;
+    e.seq(++member_seq);
+    e.name(c.name);
+    e.node_kind(c.kind);
+    e.side(c.side);
+    e.index(c.index);
+    e.kind(kind);
+    e.wall_s(since(t_launch));
+    w_member->write(&e);
+  };
   // Reaps dead children; publishes deaths the fleet did not expect.
   auto reap = [&](bool expected) {
     int st = 0;
@@ -188,15 +210,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       c->max_rss_kB = std::max(c->max_rss_kB, ru.ru_maxrss);
       if (c->name == "plant") plant_done = true;
       if (!expected && c->name != "plant") {
-        msg::MembershipEvent e;
-        e.seq(++member_seq);
-        e.name(c->name);
-        e.node_kind(c->kind);
-        e.side(c->side);
-        e.index(c->index);
-        e.kind(msg::MEMBER_DIED);
-        e.wall_s(since(t_launch));
-        w_member->write(&e);
+        publish_member(*c, msg::MEMBER_DIED);
         log.warn("{} (pid {}) died: exit {} signal {}", c->name, pid, c->exit_code, c->signal);
       }
     }
@@ -261,15 +275,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
         log.warn("fault: killed {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
       } else if (it != kids.end() && f.action == "restart" && !it->running) {
         spawn(*it, o.run_dir, env);
-        msg::MembershipEvent e;
-        e.seq(++member_seq);
-        e.name(it->name);
-        e.node_kind(it->kind);
-        e.side(it->side);
-        e.index(it->index);
-        e.kind(msg::MEMBER_STARTED);
-        e.wall_s(since(t_launch));
-        w_member->write(&e);
+        publish_member(*it, msg::MEMBER_STARTED);
         log.warn("fault: restarted {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
       } else {
         rec["skipped"] = "target not in a state for this action";

@@ -41,7 +41,8 @@ int GroupNode::run() {
     log_->info("resumed the wear ledger: {} decisions, {} reallocations so far", core_.ledger().decisions,
                core_.ledger().reallocations);
   const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
-  bool announced = false, plant_seen = false;
+  bool announced = false;
+  comm::PlantWatch plant;
   long long last_tick = -1;
   uint64_t rejected = 0;
   uint64_t seen = signal.count();
@@ -49,21 +50,11 @@ int GroupNode::run() {
   while (!stop.load()) {
     seen = signal.wait_until(seen, std::chrono::steady_clock::now() + std::chrono::milliseconds(200));
     if (!announced && ticks.matched() >= 1 && status_match.matched() >= 1) {
-      msg::NodeReady r;
-      r.name(args_.name);
-      r.kind(msg::NODE_GROUP);
-      r.pid(static_cast<uint32_t>(getpid()));
-      r.ready(true);
-      w_ready->write(&r);
+      comm::announce_ready(w_ready, args_.name, msg::NODE_GROUP);
       announced = true;
       log_->info("matched the plant: ready");
     }
-    bool lost = false;
-    for (const auto& ev : ticks.drain_liveliness()) {
-      if (ev.alive) plant_seen = true;
-      if (!ev.alive && plant_seen) lost = true;
-    }
-    if (lost) {
+    if (plant.lost(ticks.drain_liveliness())) {
       log_->error("lost the plant (liveliness): exiting");
       code = 3;
       break;

@@ -42,6 +42,7 @@ class PlantCore {
   double mean_active_agents() const { return ticks_done_ ? active_sum_ / ticks_done_ : 0.0; }
   double max_speed_error_pct() const { return max_err_pct_; }
   double rms_speed_error_pct() const;
+  bool reached_reference() const { return reached_; }
   int last_active(int side) const { return side == 0 ? last_active_L_ : last_active_R_; }
 
  private:

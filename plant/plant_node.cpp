@@ -65,13 +65,8 @@ int PlantNode::run() {
   while (!stop.load() && !started) {
     seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(200));
     if (!announced && replies.matched() >= n_agents && groups.matched() >= 2 && centrals.matched() >= 1 &&
-        tick_match.matched() >= n_agents + 3) {
-      msg::NodeReady r;
-      r.name("plant");
-      r.kind(msg::NODE_PLANT);
-      r.pid(static_cast<uint32_t>(getpid()));
-      r.ready(true);
-      w_ready->write(&r);
+        tick_match.matched() >= n_agents + 4) {  // agents, 2 groups, central and the launcher
+      comm::announce_ready(w_ready, "plant", msg::NODE_PLANT);
       announced = true;
       log_->info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,
                  std::chrono::duration<double>(Clock::now() - t_launch).count());
@@ -279,7 +274,7 @@ int PlantNode::run() {
   if (status == "ok") {
     if (live_end[0] == 0 || live_end[1] == 0)
       status = std::string("degraded: side ") + (live_end[0] == 0 ? "L" : "R") + " has no live agent; the robot stopped";
-    else {
+    else if (core.reached_reference()) {  // a run too short to reach its speed is not degraded
       const double ref_v = 0.5 * (ref_L + ref_R) * sc.robot.wheel_radius_m;
       const double err = ref_v > 0.0 ? 100.0 * std::fabs(core.state()[model::kVx] - ref_v) / ref_v : 0.0;
       if (err > 5.0)
