@@ -140,6 +140,7 @@ dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterLi
     q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 200 * 1000000);
   }
   q.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;
+  q.data_sharing().off();  // plain SHM transport only: no data-sharing segments left in /dev/shm
   auto* w = pub_->create_datawriter(t, q, l, l ? dds::StatusMask::publication_matched() : dds::StatusMask::none());
   if (!w) throw std::runtime_error("cannot create writer on " + t->get_name());
   writers_.push_back(w);
@@ -158,6 +159,7 @@ dds::DataReader* Participant::reader(dds::Topic* t, Profile p, dds::DataReaderLi
     q.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
     q.history().kind = dds::KEEP_ALL_HISTORY_QOS;
   }
+  q.data_sharing().off();
   dds::StatusMask mask = dds::StatusMask::data_available() << dds::StatusMask::subscription_matched()
                          << dds::StatusMask::liveliness_changed();
   auto* r = sub_->create_datareader(t, q, l, mask);
