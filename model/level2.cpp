@@ -10,14 +10,8 @@
 namespace maptr::model {
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 void require(bool ok, const std::string& field, double value, const std::string& why) {
-  if (!ok) throw ParamError("level2." + field + " = " + fmt(value) + ": " + why);
+  if (!ok) throw ParamError("level2." + field + " = " + param_value(value) + ": " + why);
 }
 
 /// log(1 + e^x) without overflow.

@@ -4,24 +4,24 @@
 #include <sstream>
 
 namespace maptr::model {
-namespace {
-
-std::string fmt(double v) {
+std::string param_value(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
 }
+
+namespace {
 
 void require(bool ok, const std::string& field, const std::string& value, const std::string& why) {
   if (!ok) throw ParamError(field + " = " + value + ": " + why);
 }
 
 void positive(double v, const std::string& field) {
-  require(std::isfinite(v) && v > 0.0, field, fmt(v), "must be a positive finite number");
+  require(std::isfinite(v) && v > 0.0, field, param_value(v), "must be a positive finite number");
 }
 
 void non_negative(double v, const std::string& field) {
-  require(std::isfinite(v) && v >= 0.0, field, fmt(v), "must be a non-negative finite number");
+  require(std::isfinite(v) && v >= 0.0, field, param_value(v), "must be a non-negative finite number");
 }
 
 }  // namespace
@@ -59,9 +59,9 @@ MotorParams motor_type(const std::string& name) {
 }
 
 void BatteryParams::validate() const {
-  require(std::isfinite(h), "battery.h", fmt(h), "must be finite");
-  require(std::isfinite(w), "battery.w", fmt(w), "must be finite");
-  require(std::isfinite(z), "battery.z", fmt(z), "must be finite");
+  require(std::isfinite(h), "battery.h", param_value(h), "must be finite");
+  require(std::isfinite(w), "battery.w", param_value(w), "must be finite");
+  require(std::isfinite(z), "battery.z", param_value(z), "must be finite");
   positive(y, "battery.y");
   positive(capacity_mAh, "battery.capacity_mAh");
 }
@@ -78,8 +78,8 @@ void RobotParams::validate() const {
   non_negative(mu_lateral, "mu_lateral");
   positive(k_s, "k_s");
   positive(gravity, "gravity");
-  require(std::isfinite(yaw_inertia_kgm2), "yaw_inertia_kgm2", fmt(yaw_inertia_kgm2), "must be finite");
-  require(std::isfinite(wheel_inertia_kgm2), "wheel_inertia_kgm2", fmt(wheel_inertia_kgm2),
+  require(std::isfinite(yaw_inertia_kgm2), "yaw_inertia_kgm2", param_value(yaw_inertia_kgm2), "must be finite");
+  require(std::isfinite(wheel_inertia_kgm2), "wheel_inertia_kgm2", param_value(wheel_inertia_kgm2),
           "must be finite");
   motor.validate();
   battery.validate();
@@ -104,7 +104,7 @@ void PidParams::validate() const {
   non_negative(kp, "pid.kp");
   non_negative(ki, "pid.ki");
   non_negative(kd, "pid.kd");
-  require(kp + ki > 0.0, "pid.kp", fmt(kp), "kp and ki cannot both be zero");
+  require(kp + ki > 0.0, "pid.kp", param_value(kp), "kp and ki cannot both be zero");
 }
 
 }  // namespace maptr::model

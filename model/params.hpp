@@ -29,6 +29,9 @@ struct MotorParams {
   void validate() const;
 };
 
+/// A parameter value as error messages print it.
+std::string param_value(double v);
+
 /// Motor of Table 1 by name: "I" or "II" ("III" has no data in the paper). Throws ParamError.
 MotorParams motor_type(const std::string& name);
 

@@ -2,6 +2,8 @@
 // Long runs use the CVODE adapter (plant/integrator.hpp) in 10 ms ticks, like the plant.
 #include <gtest/gtest.h>
 
+#include "tests/unit/test_support.hpp"
+
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -14,32 +16,13 @@
 
 namespace {
 
+using maptr::test::record;
+using maptr::test::bisect;
+
 namespace mm = maptr::model;
 using maptr::plant::CvodeIntegrator;
 
 constexpr double kG = 9.81;
-
-void record(const std::string& key, double value) {
-  std::ostringstream os;
-  os << std::setprecision(3) << std::scientific << value;
-  ::testing::Test::RecordProperty(key, os.str());
-}
-
-double bisect(const std::function<double(double)>& f, double lo, double hi, double tol) {
-  double flo = f(lo);
-  EXPECT_LT(flo * f(hi), 0.0) << "no sign change on [" << lo << ", " << hi << "]";
-  while (hi - lo > tol) {
-    const double mid = 0.5 * (lo + hi);
-    const double fm = f(mid);
-    if ((fm < 0.0) == (flo < 0.0)) {
-      lo = mid;
-      flo = fm;
-    } else {
-      hi = mid;
-    }
-  }
-  return 0.5 * (lo + hi);
-}
 
 // Effective translational mass m + N I_w / r^2 with the disc wheel I_w = m_w r^2 / 2, by hand.
 double m_eff_by_hand(double m, int n, double m_w) { return m + n * 0.5 * m_w; }

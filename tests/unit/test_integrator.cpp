@@ -1,6 +1,8 @@
 // CVODE adapter (plant/integrator.hpp) against a fine fixed-step RK4 reference.
 #include <gtest/gtest.h>
 
+#include "tests/unit/test_support.hpp"
+
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -13,15 +15,11 @@
 
 namespace {
 
+using maptr::test::record;
+
 namespace mm = maptr::model;
 using maptr::plant::CvodeIntegrator;
 using maptr::plant::rk4_step;
-
-void record(const std::string& key, double value) {
-  std::ostringstream os;
-  os << std::setprecision(3) << std::scientific << value;
-  ::testing::Test::RecordProperty(key, os.str());
-}
 
 // Inputs of tick k: 0.3 s straight acceleration (all agents, equal voltages), then a hard left
 // turn (2 left agents at a low voltage, every right agent at a rising voltage), with one right

@@ -1,6 +1,8 @@
 // Skid-steer kinematics (model/kinematics.hpp) and turning in place through the dynamics.
 #include <gtest/gtest.h>
 
+#include "tests/unit/test_support.hpp"
+
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -12,13 +14,9 @@
 
 namespace {
 
-namespace mm = maptr::model;
+using maptr::test::record;
 
-void record(const std::string& key, double value) {
-  std::ostringstream os;
-  os << std::setprecision(3) << std::scientific << value;
-  ::testing::Test::RecordProperty(key, os.str());
-}
+namespace mm = maptr::model;
 
 TEST(Kinematics, HandValues) {
   // a = 0.2 m, v_x = 1 m/s, w = 2 rad/s: v_L = 1 - 0.1 * 2 = 0.8, v_R = 1.2 m/s (1e-15).

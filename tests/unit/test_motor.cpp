@@ -1,6 +1,8 @@
 // DC motor model (model/motor.hpp) against Table 1 and closed forms.
 #include <gtest/gtest.h>
 
+#include "tests/unit/test_support.hpp"
+
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -11,33 +13,13 @@
 
 namespace {
 
+using maptr::test::record;
+using maptr::test::bisect;
+
 using maptr::model::MotorParams;
 namespace mm = maptr::model;
 
 constexpr double kRpmPerRadS = 60.0 / (2.0 * M_PI);
-
-void record(const std::string& key, double value) {
-  std::ostringstream os;
-  os << std::setprecision(3) << std::scientific << value;
-  ::testing::Test::RecordProperty(key, os.str());
-}
-
-// Root of f on [lo, hi] by bisection (f(lo), f(hi) of opposite signs), to |hi - lo| < tol.
-double bisect(const std::function<double(double)>& f, double lo, double hi, double tol) {
-  double flo = f(lo);
-  EXPECT_LT(flo * f(hi), 0.0) << "no sign change on [" << lo << ", " << hi << "]";
-  while (hi - lo > tol) {
-    const double mid = 0.5 * (lo + hi);
-    const double fm = f(mid);
-    if ((fm < 0.0) == (flo < 0.0)) {
-      lo = mid;
-      flo = fm;
-    } else {
-      hi = mid;
-    }
-  }
-  return 0.5 * (lo + hi);
-}
 
 // Speed at which the net torque of an active motor at voltage v vanishes, by bisection on
 // active_torque(armature_current(v, w), w) = 0 over (1 rad/s, v / K_e] (at v / K_e the current is 0
