@@ -1,0 +1,64 @@
+#include "comm/follower.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+
+namespace maptr::comm {
+
+bool tick_valid(const msg::PlantTick& t, std::size_t per_side) {
+  for (double v : {t.t(), t.dt(), t.x(), t.y(), t.theta(), t.v_x(), t.w(), t.phidot_L(), t.phidot_R(),
+                   t.battery_V_L(), t.battery_V_R(), t.discharge_mAh_L(), t.discharge_mAh_R(), t.energy_J(),
+                   t.distance_m(), t.phidot_ref_L(), t.phidot_ref_R()})
+    if (!std::isfinite(v)) return false;
+  return t.active_L().size() == per_side && t.active_R().size() == per_side && t.live_L().size() == per_side &&
+         t.live_R().size() == per_side && t.battery_V_L() >= 0 && t.battery_V_R() >= 0;
+}
+
+TickFollower::TickFollower(const ProcessArgs& args, uint8_t node_kind, std::shared_ptr<spdlog::logger> log)
+    : args_(args), kind_(node_kind), log_(std::move(log)) {
+  participant_ = std::make_unique<Participant>(args_.name, args_.dds);
+  auto& p = *participant_;
+  p.reader(p.topic<msg::PlantTickPubSubType>(topic::kTick), Profile::kStream, &ticks_);
+  ready_ = p.writer(p.topic<msg::NodeReadyPubSubType>(topic::kReady), Profile::kLatched);
+}
+
+int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick) {
+  auto& stop = stop_flag();
+  const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
+  PlantWatch plant;
+  bool announced = false;
+  long long last_tick = -1;
+  uint64_t seen = signal_.count();
+  log_->info("{} up (pid {})", args_.name, getpid());
+  while (!stop.load()) {
+    seen = signal_.wait_until(seen, std::chrono::steady_clock::now() + std::chrono::milliseconds(200));
+    if (!announced && ticks_.matched() >= 1 && answer_match_.matched() >= 1) {
+      announce_ready(ready_, args_.name, kind_);
+      announced = true;
+      log_->info("matched the plant: ready");
+    }
+    if (plant.lost(ticks_.drain_liveliness())) {
+      log_->error("lost the plant (liveliness): exiting");
+      return 3;
+    }
+    for (auto& [t, handle] : ticks_.drain()) {
+      if (!tick_valid(t, per_side) || static_cast<long long>(t.tick()) <= last_tick) {
+        ++rejected_;
+        log_->warn("rejected a malformed or stale tick {} ({} so far)", t.tick(), rejected_);
+        continue;
+      }
+      last_tick = static_cast<long long>(t.tick());
+      if (t.run_state() != msg::RUN_RUNNING) {
+        log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted",
+                   t.tick());
+        return 0;
+      }
+      on_tick(t);
+    }
+  }
+  log_->info("stop signal: exiting");
+  return 0;
+}
+
+}  // namespace maptr::comm

@@ -1,0 +1,50 @@
+#pragma once
+// The loop every process that follows the plant's ticks runs (agents, groups, central): it
+// reads PlantTick, answers on one writer, announces readiness once both are matched, drops
+// and counts malformed or stale ticks, and ends when the run ends (0), when the plant is lost
+// through DDS liveliness (3) or on SIGTERM/SIGINT (0). The node only says what to answer.
+#include <spdlog/logger.h>
+
+#include <functional>
+#include <memory>
+
+#include "comm/process.hpp"
+#include "idl/maptrPubSubTypes.h"
+
+namespace maptr::comm {
+
+/// True when every number in the tick is finite and every mask has one entry per agent of a side.
+bool tick_valid(const msg::PlantTick& t, std::size_t per_side);
+
+class TickFollower {
+ public:
+  TickFollower(const ProcessArgs& args, uint8_t node_kind, std::shared_ptr<spdlog::logger> log);
+
+  /// Creates the writer this process answers each tick on (readiness waits for its match).
+  template <class PubSubType>
+  eprosima::fastdds::dds::DataWriter* answer_writer(const char* topic_name) {
+    answer_ = participant_->writer(participant_->topic<PubSubType>(topic_name), Profile::kStream, &answer_match_);
+    return answer_;
+  }
+
+  /// Calls on_tick for each valid new tick of the running run; returns the exit code.
+  int run(const std::function<void(const msg::PlantTick&)>& on_tick);
+
+  /// Ticks dropped as malformed or stale so far.
+  uint64_t rejected() const { return rejected_; }
+
+ private:
+  const ProcessArgs& args_;
+  uint8_t kind_;
+  std::shared_ptr<spdlog::logger> log_;
+  // Listeners first: they must outlive the participant that calls them.
+  Signal signal_;
+  Inbox<msg::PlantTick> ticks_{signal_};
+  MatchCounter answer_match_{&signal_};
+  std::unique_ptr<Participant> participant_;
+  eprosima::fastdds::dds::DataWriter* ready_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* answer_ = nullptr;
+  uint64_t rejected_ = 0;
+};
+
+}  // namespace maptr::comm
