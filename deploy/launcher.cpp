@@ -325,9 +325,10 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       } catch (...) {
       }
   }
+  if (!plant.is_object()) plant = nlohmann::json::object();
   const Child& pc = kids.front();
   if (status == "ok") {
-    if (plant.is_null())
+    if (plant.empty())
       status = "aborted: the plant ended without results (exit " + std::to_string(pc.exit_code) + ", signal " +
                std::to_string(pc.signal) + ")";
     else
