@@ -6,6 +6,7 @@
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,6 +23,7 @@ extern char** environ;
 #include <thread>
 
 #include "comm/dds.hpp"
+#include "deploy/faults.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::deploy {
@@ -39,10 +41,15 @@ struct Child {
   uint16_t index = 0;
   pid_t pid = -1;
   bool running = false;
+  bool external = false;  ///< started by the user, not by the launcher
   int exit_code = -1, signal = 0;
   long max_rss_kB = 0;
   int starts = 0;
 };
+
+double wall_ms_now() {
+  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
 
 int free_udp_port() {
   int fd = socket(AF_INET, SOCK_DGRAM, 0);
@@ -170,7 +177,37 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
 
   const auto t_launch = Clock::now();
   auto since = [&](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-  for (auto& c : kids) spawn(c, o.run_dir, env);
+  for (auto& c : kids)
+    if (std::find(o.external.begin(), o.external.end(), c.name) != o.external.end()) c.external = true;
+  for (auto& c : kids)
+    if (!c.external) spawn(c, o.run_dir, env);
+  // The fleet's coordinates, for tools and for processes started by hand.
+  {
+    nlohmann::json fleet = {{"launcher_pid", getpid()},
+                            {"domain", o.domain},
+                            {"discovery_server", dds.discovery_server},
+                            {"lease_s", dds.lease_s},
+                            {"config", cfg},
+                            {"run_dir", o.run_dir},
+                            {"bin_dir", o.bin_dir}};
+    for (const auto& c : kids) fleet["processes"].push_back({{"name", c.name}, {"pid", c.pid}, {"external", c.external}});
+    std::ofstream(o.run_dir + "/fleet.json") << fleet.dump(2) << "\n";
+  }
+  for (const auto& c : kids)
+    if (c.external) {
+      std::string cmd;
+      for (const auto& [k, v] : env) cmd += k + "=" + v + " ";
+      cmd += c.binary;
+      for (const auto& a : c.args) cmd += " " + a;
+      std::fprintf(stderr, "maptr: waiting for %s; start it with:\n  %s\n", c.name.c_str(), cmd.c_str());
+      log.info("external {}: {}", c.name, cmd);
+    }
+  // Control FIFO: `maptr kill NAME` / `maptr restart NAME` from another terminal.
+  const std::string fifo = o.run_dir + "/control";
+  ::unlink(fifo.c_str());
+  int control_fd = -1;
+  if (mkfifo(fifo.c_str(), 0600) == 0) control_fd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  std::string control_buf;
   log.info("launched {} processes (discovery server {})", kids.size(), dds.discovery_server);
   if (o.progress)
     std::fprintf(stderr, "maptr: launched %zu processes (%d agents, 2 groups, central, plant)\n", kids.size(),
@@ -223,11 +260,15 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   while (ready_names.size() < kids.size()) {
     seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(50));
     for (auto& [r, h] : ready.drain())
-      if (r.ready()) ready_names.insert(r.name());
+      if (r.ready()) {
+        ready_names.insert(r.name());
+        for (auto& c : kids)
+          if (c.external && c.name == r.name()) c.pid = static_cast<pid_t>(r.pid());
+      }
     reap(false);
     bool early_death = false;
     for (auto& c : kids)
-      if (!c.running) early_death = true;
+      if (!c.running && !c.external) early_death = true;
     if (early_death || g_interrupted.load() || since(t_launch) > discovery_timeout) {
       std::string missing;
       for (auto& c : kids)
@@ -266,11 +307,31 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       act_L = t.n_active_L();
       act_R = t.n_active_R();
     }
+    // Commands from `maptr kill|restart NAME` join the schedule at the current time.
+    if (control_fd >= 0) {
+      char buf[256];
+      ssize_t n;
+      while ((n = ::read(control_fd, buf, sizeof(buf))) > 0) control_buf.append(buf, static_cast<std::size_t>(n));
+      for (std::size_t nl; (nl = control_buf.find('\n')) != std::string::npos;) {
+        std::istringstream line(control_buf.substr(0, nl));
+        control_buf.erase(0, nl + 1);
+        std::string action, target;
+        line >> action >> target;
+        if (action == "kill" || action == "restart") {
+          faults.insert(faults.begin() + static_cast<long>(next_fault), config::FaultSpec{target, action, sim_t});
+          log.info("command: {} {}", action, target);
+        } else {
+          log.warn("ignored control command '{}'", action + " " + target);
+        }
+      }
+    }
     while (next_fault < faults.size() && sim_t >= faults[next_fault].at_s) {
-      const auto& f = faults[next_fault++];
+      const auto f = faults[next_fault++];
       auto it = std::find_if(kids.begin(), kids.end(), [&](const Child& c) { return c.name == f.target; });
-      nlohmann::json rec = {{"target", f.target}, {"action", f.action}, {"at_s", sim_t}};
-      if (it != kids.end() && f.action == "kill" && it->running) {
+      nlohmann::json rec = {{"target", f.target}, {"action", f.action}, {"at_s", sim_t}, {"wall_ms", wall_ms_now()}};
+      if (it != kids.end() && it->external) {
+        rec["skipped"] = "an external process is not the launcher's to kill or start";
+      } else if (it != kids.end() && f.action == "kill" && it->running) {
         kill(it->pid, SIGKILL);
         log.warn("fault: killed {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
       } else if (it != kids.end() && f.action == "restart" && !it->running) {
@@ -313,6 +374,8 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   for (auto& c : kids)
     if (c.running) kill(c.pid, SIGKILL);
   wait_all(5.0);
+  if (control_fd >= 0) ::close(control_fd);
+  ::unlink(fifo.c_str());
   participant.reset();
   comm::clean_stale_shm();
 
@@ -353,7 +416,10 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   summary["active_agents"] = plant.value("active_agents", nlohmann::json{{"L", act_L}, {"R", act_R}});
   summary["battery_discharge_mAh"] = plant.value("battery_discharge_mAh", nlohmann::json{{"L", 0}, {"R", 0}});
   summary["discovery_s"] = discovery_s;
+  analyse_faults(failures, plant.value("membership_events", nlohmann::json::array()), o.run_dir + "/trace.csv",
+                 sc.robot.wheel_radius_m);
   summary["failures"] = failures;
+  if (o.chaos_seed >= 0) summary["chaos_seed"] = o.chaos_seed;
   summary["plant"] = plant;
   nlohmann::json procs = nlohmann::json::array();
   for (const auto& c : kids)
@@ -362,7 +428,8 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
                      {"exit_code", c.exit_code},
                      {"signal", c.signal},
                      {"max_rss_kB", c.max_rss_kB},
-                     {"starts", c.starts}});
+                     {"starts", c.starts},
+                     {"external", c.external}});
   summary["processes"] = procs;
   const std::string trace = o.run_dir + "/trace.csv";
   summary["trace_sha256"] = fs::exists(trace) ? sha256_of(trace) : "";
@@ -370,6 +437,16 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   std::ofstream(o.run_dir + "/summary.json") << summary.dump(2) << "\n";
   log.info("run ended: {}", status);
   return summary;
+}
+
+void send_command(const std::string& run_dir, const std::string& action, const std::string& target) {
+  const std::string fifo = run_dir + "/control";
+  const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  if (fd < 0) throw std::runtime_error("no fleet is running in " + run_dir + " (no reader on " + fifo + ")");
+  const std::string line = action + " " + target + "\n";
+  const ssize_t n = ::write(fd, line.data(), line.size());
+  ::close(fd);
+  if (n != static_cast<ssize_t>(line.size())) throw std::runtime_error("could not write to " + fifo);
 }
 
 std::string human_summary(const nlohmann::json& s) {

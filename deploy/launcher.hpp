@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "deploy/scenario.hpp"
 
@@ -19,7 +20,15 @@ struct LaunchOptions {
   std::string bin_dir;       ///< where maptr_agent & co. are
   int domain = 0;            ///< DDS domain id
   bool progress = true;      ///< print a progress line every second
+  /// Processes the launcher does not start: the user starts them (e.g. on another terminal or
+  /// host) with the command printed at launch; the fleet waits for them like for the others.
+  std::vector<std::string> external;
+  long long chaos_seed = -1; ///< recorded in the summary when the faults came from --chaos
 };
+
+/// Sends "kill NAME" or "restart NAME" to the launcher running in run_dir (through its
+/// control FIFO). Throws std::runtime_error when no fleet runs there.
+void send_command(const std::string& run_dir, const std::string& action, const std::string& target);
 
 /// Runs the fleet; returns the summary (also written to RUN_DIR/summary.json).
 nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "deploy/faults.hpp"
 #include "deploy/launcher.hpp"
 #include "deploy/scenario.hpp"
 
@@ -42,7 +43,8 @@ struct RunArgs {
   std::string motor, mode, out;
   bool realtime = false, quiet = false;
   int domain = -1, trace_every = 0;
-  std::vector<std::string> kills, restarts;
+  std::vector<std::string> kills, restarts, external;
+  long long chaos = -1;
 };
 
 void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::string& action) {
@@ -80,7 +82,15 @@ int cmd_run(const RunArgs& a, const char* argv0) {
       s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
     add_faults(s, a.kills, "kill");
     add_faults(s, a.restarts, "restart");
+    if (a.chaos >= 0)
+      for (const auto& f : maptr::deploy::chaos_schedule(static_cast<unsigned>(a.chaos), s)) s.faults.push_back(f);
     s.validate();
+    for (const auto& name : a.external) {
+      int side = 0, idx = 0;
+      if (!maptr::config::parse_agent_name(name, side, idx) || idx >= s.robot.per_side())
+        throw ScenarioError("--external " + name + ": not an agent of this scenario (L0..L" +
+                            std::to_string(s.robot.per_side() - 1) + ", R0..)");
+    }
   } catch (const ScenarioError& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 2;
@@ -93,6 +103,8 @@ int cmd_run(const RunArgs& a, const char* argv0) {
   o.run_dir = a.out.empty() ? unique_run_dir("runs", s.name) : a.out;
   o.bin_dir = bin_dir(argv0);
   o.progress = !a.quiet;
+  o.external = a.external;
+  o.chaos_seed = a.chaos;
   o.domain = a.domain >= 0 ? a.domain : (std::getenv("MAPTR_DOMAIN") ? std::atoi(std::getenv("MAPTR_DOMAIN")) : 0);
   fs::create_directories(o.run_dir + "/logs");
   auto log = std::make_shared<spdlog::logger>(
@@ -110,6 +122,37 @@ int cmd_run(const RunArgs& a, const char* argv0) {
   std::cout << "results     " << o.run_dir << "/summary.json, trace.csv, logs/\n";
   const std::string st = summary.value("status", "");
   return st == "ok" ? 0 : (st.rfind("degraded", 0) == 0 ? 3 : 1);
+}
+
+/// The newest run folder under runs/ whose launcher is still listening.
+std::string latest_live_run() {
+  std::string best;
+  fs::file_time_type best_t{};
+  std::error_code ec;
+  if (!fs::exists("runs", ec)) return "";
+  for (const auto& d : fs::directory_iterator("runs", ec)) {
+    const fs::path fifo = d.path() / "control";
+    if (!fs::is_fifo(fifo, ec)) continue;
+    const auto t = fs::last_write_time(d.path(), ec);
+    if (best.empty() || t > best_t) best = d.path().string(), best_t = t;
+  }
+  return best;
+}
+
+int cmd_signal(const std::string& action, const std::string& target, std::string run_dir) {
+  if (run_dir.empty()) run_dir = latest_live_run();
+  if (run_dir.empty()) {
+    std::cerr << "maptr: no running fleet found under runs/ (give its folder with --run DIR)\n";
+    return 2;
+  }
+  try {
+    maptr::deploy::send_command(run_dir, action, target);
+  } catch (const std::exception& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << "maptr: sent '" << action << " " << target << "' to the fleet in " << run_dir << "\n";
+  return 0;
 }
 
 }  // namespace
@@ -132,8 +175,19 @@ int main(int argc, char** argv) {
   run->add_option("--trace-every", ra.trace_every, "write every n-th tick to trace.csv");
   run->add_option("--kill", ra.kills, "kill a process at a simulated time, e.g. L3@120 (repeatable)");
   run->add_option("--restart", ra.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
+  run->add_option("--chaos", ra.chaos, "random kills and restarts of agents and controllers, reproducible from SEED");
+  run->add_option("--external", ra.external, "an agent you start yourself (the launcher prints the command)");
   run->add_flag("--quiet", ra.quiet, "no progress lines");
+  std::string target, run_dir;
+  auto* killc = app.add_subcommand("kill", "SIGKILL a process of a running fleet (e.g. L3, group-R, central)");
+  killc->add_option("target", target, "process name")->required();
+  killc->add_option("--run", run_dir, "run folder (default: the newest running one under runs/)");
+  auto* restartc = app.add_subcommand("restart", "start a killed process of a running fleet again");
+  restartc->add_option("target", target, "process name")->required();
+  restartc->add_option("--run", run_dir, "run folder (default: the newest running one under runs/)");
   CLI11_PARSE(app, argc, argv);
   if (run->parsed()) return cmd_run(ra, argv[0]);
+  if (killc->parsed()) return cmd_signal("kill", target, run_dir);
+  if (restartc->parsed()) return cmd_signal("restart", target, run_dir);
   return 2;
 }

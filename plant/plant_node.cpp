@@ -86,7 +86,14 @@ int PlantNode::run() {
   double ref_L = 0.0, ref_R = 0.0;
   int relay_L = 0, relay_R = 0;
   uint64_t rejected = 0, missed_deadlines = 0, declared_dead = 0;
-  std::vector<std::string> events;
+  nlohmann::json events = nlohmann::json::array();
+  // One record per membership change: who, what, simulated time and wall clock (ms since the
+  // epoch, comparable with the launcher's fault times).
+  auto record = [&](const std::string& name, const std::string& what) {
+    const double wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+    events.push_back({{"name", name}, {"event", what}, {"t_s", core.t()}, {"wall_ms", wall_ms}});
+  };
   // Deadline: the last resort only; it grows with the fleet (slow is not dead).
   const double deadline_s = 5.0 + 0.05 * n_agents;
   const long long total = sc.ticks();
@@ -135,15 +142,27 @@ int PlantNode::run() {
   };
   auto mark_dead_by_name = [&](const std::string& name, const char* why) {
     int s = 0, j = 0;
+    bool was_live = false;
     if (config::parse_agent_name(name, s, j) && j < per_side) {
-      if (agent[s][j].live) events.push_back(name + " " + why + " at t=" + std::to_string(core.t()));
+      was_live = agent[s][j].live;
       agent[s][j].live = false;
     } else if (name == "group-L" || name == "group-R") {
+      was_live = group[name == "group-L" ? 0 : 1].live;
       group[name == "group-L" ? 0 : 1].live = false;
     } else if (name == "central") {
+      was_live = central.live;
       central.live = false;
     }
+    if (!was_live) return;
+    record(name, why);
     log_->warn("{} {} at t={:.2f} s", name, why, core.t());
+  };
+  auto mark_alive = [&](Member& m, const std::string& name) {
+    if (!m.live) {
+      record(name, "rejoined");
+      log_->info("{} answers again at t={:.2f} s: re-admitted", name, core.t());
+    }
+    m.live = true;
   };
 
   while (!stop.load()) {
@@ -173,9 +192,11 @@ int PlantNode::run() {
       for (const auto& ev : groups.drain_liveliness())
         if (!ev.alive)
           for (int s = 0; s < 2; ++s)
-            if (group[s].writer_known && group[s].writer == ev.writer) group[s].live = false;
+            if (group[s].writer_known && group[s].writer == ev.writer)
+              mark_dead_by_name(s == 0 ? "group-L" : "group-R", "lost (DDS liveliness)");
       for (const auto& ev : centrals.drain_liveliness())
-        if (!ev.alive && central.writer_known && central.writer == ev.writer) central.live = false;
+        if (!ev.alive && central.writer_known && central.writer == ev.writer)
+          mark_dead_by_name("central", "lost (DDS liveliness)");
 
       for (auto& [r, h] : replies.drain()) {
         const bool ok = r.side() <= 1 && r.index() < per_side && std::isfinite(r.voltage_V()) &&
@@ -187,8 +208,7 @@ int PlantNode::run() {
           continue;
         }
         Member& m = agent[r.side()][r.index()];
-        if (!m.live) log_->info("{} answers again: re-admitted", config::agent_name(r.side(), r.index()));
-        m.live = true;
+        mark_alive(m, config::agent_name(r.side(), r.index()));
         m.answered = true;
         m.writer = h;
         m.writer_known = true;
@@ -206,7 +226,8 @@ int PlantNode::run() {
           continue;
         }
         const int s = g.side();
-        group[s].live = group[s].answered = true;
+        mark_alive(group[s], s == 0 ? "group-L" : "group-R");
+        group[s].answered = true;
         group[s].writer = h;
         group[s].writer_known = true;
         got_group[s] = true;
@@ -222,7 +243,8 @@ int PlantNode::run() {
           ++rejected;
           continue;
         }
-        central.live = central.answered = true;
+        mark_alive(central, "central");
+        central.answered = true;
         central.writer = h;
         central.writer_known = true;
         got_central = true;
@@ -246,8 +268,9 @@ int PlantNode::run() {
               ++declared_dead;
             }
         for (int s = 0; s < 2; ++s)
-          if (group[s].live && !group[s].answered) group[s].live = false;
-        if (central.live && !central.answered) central.live = false;
+          if (group[s].live && !group[s].answered)
+            mark_dead_by_name(s == 0 ? "group-L" : "group-R", "missed the tick deadline");
+        if (central.live && !central.answered) mark_dead_by_name("central", "missed the tick deadline");
         continue;
       }
       seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(50));
