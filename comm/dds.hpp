@@ -65,7 +65,8 @@ class Signal {
   std::atomic<uint64_t> count_{0};
 };
 
-/// Liveliness change seen by a reader (writer handle, alive or lost).
+/// Liveliness change seen by a reader (writer handle, alive or lost); an unmatched writer
+/// counts as lost.
 struct LivelinessEvent {
   eprosima::fastrtps::rtps::InstanceHandle_t writer;
   bool alive = false;
@@ -92,6 +93,11 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
   void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
     matched_.store(s.current_count);
+    if (s.current_count_change < 0) {
+      // A writer went away: lost liveliness that removed its participant shows up here.
+      std::lock_guard<std::mutex> g(m_);
+      live_.push_back({s.last_publication_handle, false});
+    }
     signal_.notify();
   }
   void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,

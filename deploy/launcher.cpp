@@ -191,7 +191,8 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
                             {"run_dir", o.run_dir},
                             {"bin_dir", o.bin_dir}};
     for (const auto& c : kids) fleet["processes"].push_back({{"name", c.name}, {"pid", c.pid}, {"external", c.external}});
-    std::ofstream(o.run_dir + "/fleet.json") << fleet.dump(2) << "\n";
+    std::ofstream(o.run_dir + "/fleet.json.tmp") << fleet.dump(2) << "\n";
+    fs::rename(o.run_dir + "/fleet.json.tmp", o.run_dir + "/fleet.json");  // readers never see half a file
   }
   for (const auto& c : kids)
     if (c.external) {

@@ -90,6 +90,79 @@ inline CliResult run_cli(std::vector<std::string> args, const std::string& run_d
   return r;
 }
 
+/// Starts `maptr ARGS` in the background (output to OUT_LOG); returns its PID.
+inline pid_t start_cli(std::vector<std::string> args, const std::string& out_log) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(out_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    std::vector<char*> argv;
+    std::string bin = std::string(MAPTR_BIN_DIR) + "/maptr";
+    argv.push_back(bin.data());
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(bin.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+/// Waits for a child to exit within timeout_s (killed by its PID after that); returns its exit code.
+inline int wait_child(pid_t pid, double timeout_s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  int st = 0;
+  while (waitpid(pid, &st, WNOHANG) != pid) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > timeout_s) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &st, 0);
+      return -2;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/// Polls until pred() holds or timeout_s passes.
+template <class Pred>
+inline bool wait_for(Pred pred, double timeout_s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!pred()) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > timeout_s) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return true;
+}
+
+/// Lines in a file (0 if it does not exist).
+inline int count_lines(const std::string& path) {
+  std::ifstream in(path);
+  int n = 0;
+  for (std::string l; std::getline(in, l);) ++n;
+  return n;
+}
+
+/// True while a process exists and is not a zombie.
+inline bool process_running(pid_t pid) {
+  std::ifstream st("/proc/" + std::to_string(pid) + "/stat");
+  if (!st) return false;
+  std::string line;
+  std::getline(st, line);
+  const auto close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() && line[close + 2] != 'Z';
+}
+
+inline nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  nlohmann::json j;
+  try {
+    if (in) in >> j;
+  } catch (const nlohmann::json::exception&) {
+    j = nullptr;  // being written: not there yet
+  }
+  return j;
+}
+
 inline void write_file(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 }  // namespace maptr::testing
