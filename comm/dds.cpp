@@ -86,6 +86,7 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   udp->interfaceWhiteList.emplace_back("127.0.0.1");
   q.transport().user_transports.push_back(udp);
 
+  if (o.participant_id >= 0) q.wire_protocol().participant_id = o.participant_id;
   dp_ = dds::DomainParticipantFactory::get_instance()->create_participant(o.domain, q);
   if (!dp_) throw std::runtime_error("cannot create DDS participant '" + name + "' on domain " + std::to_string(o.domain));
   pub_ = dp_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
@@ -173,6 +174,7 @@ DdsOptions options_from_env() {
   if (const char* d = std::getenv("MAPTR_DOMAIN")) o.domain = std::atoi(d);
   if (const char* s = std::getenv("MAPTR_DISCOVERY_SERVER")) o.discovery_server = s;
   if (const char* l = std::getenv("MAPTR_LEASE_S")) o.lease_s = std::atof(l);
+  if (const char* id = std::getenv("MAPTR_PARTICIPANT_ID")) o.participant_id = std::atoi(id);
   if (const char* m = std::getenv("MAPTR_SHM_SEGMENT_BYTES")) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
   return o;
 }

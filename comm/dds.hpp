@@ -33,6 +33,7 @@ struct DdsOptions {
   double lease_s = 2.0;                 ///< participant and liveliness lease, s
   bool is_server = false;               ///< this participant is the discovery server (launcher)
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
+  int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
 };
 
 /// Topic names (one place).

@@ -26,7 +26,7 @@ TickFollower::TickFollower(const ProcessArgs& args, uint8_t node_kind, std::shar
 int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick) {
   auto& stop = stop_flag();
   const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
-  PlantWatch plant;
+  PlantWatch plant(2.0 * args_.dds.lease_s);
   bool announced = false;
   long long last_tick = -1;
   uint64_t seen = signal_.count();
@@ -38,7 +38,8 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
       announced = true;
       log_->info("matched the plant: ready");
     }
-    if (plant.lost(ticks_.drain_liveliness())) {
+    plant.update(ticks_.drain_liveliness());
+    if (plant.lost()) {
       log_->error("lost the plant (liveliness): exiting");
       return 3;
     }
@@ -49,6 +50,7 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
         continue;
       }
       last_tick = static_cast<long long>(t.tick());
+      plant.heard();
       if (t.run_state() != msg::RUN_RUNNING) {
         log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted",
                    t.tick());

@@ -39,20 +39,34 @@ namespace maptr::comm {
 /// Publishes this process's NodeReady (once every needed endpoint is matched).
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, uint8_t kind);
 
-/// Follows the plant's liveliness on a reader of its ticks: lost() turns true once the plant
-/// was seen alive and then lost (its lease expired: it was killed).
+/// Follows the plant's liveliness on a reader of its ticks. The plant counts as lost once it
+/// was seen, then reported gone (lease expired or writer unmatched) and not heard from again
+/// for `grace_s` of wall time: a liveliness flap of a live but starved plant is not a loss.
 class PlantWatch {
  public:
-  bool lost(const std::vector<LivelinessEvent>& events) {
+  explicit PlantWatch(double grace_s) : grace_(grace_s) {}
+  void update(const std::vector<LivelinessEvent>& events) {
     for (const auto& e : events) {
-      if (e.alive) seen_ = true;
-      if (!e.alive && seen_) lost_ = true;
+      if (e.alive) heard();
+      if (!e.alive && seen_ && !down_) {
+        down_ = true;
+        since_ = std::chrono::steady_clock::now();
+      }
     }
-    return lost_;
+  }
+  /// A tick or an alive report: the plant is there.
+  void heard() {
+    seen_ = true;
+    down_ = false;
+  }
+  bool lost() const {
+    return down_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - since_).count() > grace_;
   }
 
  private:
-  bool seen_ = false, lost_ = false;
+  double grace_;
+  bool seen_ = false, down_ = false;
+  std::chrono::steady_clock::time_point since_{};
 };
 
 /// main() of a process whose name is fixed (plant, central): parses the shared arguments,

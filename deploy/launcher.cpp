@@ -45,6 +45,7 @@ struct Child {
   int exit_code = -1, signal = 0;
   long max_rss_kB = 0;
   int starts = 0;
+  int base_id = 0;  ///< DDS participant id of its first start
 };
 
 double wall_ms_now() {
@@ -78,7 +79,7 @@ std::string sha256_of(const std::string& path) {
   return out.substr(0, out.find(' '));
 }
 
-void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std::string>& env) {
+void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std::string>& env, int id_stride) {
   // Everything the child needs is prepared before fork(): between fork and exec the child of
   // a multi-threaded process may only make async-signal-safe calls (no allocation).
   const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
@@ -88,6 +89,9 @@ void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std
     if (!env.count(kv.substr(0, kv.find('=')))) env_store.push_back(kv);
   }
   for (const auto& [k, v] : env) env_store.push_back(k + "=" + v);
+  // A fresh participant id (and so fresh ports) at every start: a restarted process never
+  // reuses the shared-memory ports its killed predecessor left behind.
+  env_store.push_back("MAPTR_PARTICIPANT_ID=" + std::to_string(c.base_id + c.starts * id_stride));
   std::vector<char*> envp, argv;
   for (auto& e : env_store) envp.push_back(e.data());
   envp.push_back(nullptr);
@@ -133,6 +137,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   dds.domain = o.domain;
   dds.discovery_server = "127.0.0.1:" + std::to_string(free_udp_port());
   dds.is_server = true;
+  dds.participant_id = 0;
   dds.lease_s = std::max(2.0, 0.02 * sc.robot.agents);
   comm::Signal signal;
   comm::Inbox<msg::NodeReady> ready(signal);
@@ -172,6 +177,8 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       const std::string n = config::agent_name(s, j);
       add(n, "maptr_agent", {"--id", n}, msg::NODE_AGENT, static_cast<uint8_t>(s), static_cast<uint16_t>(j));
     }
+  const int id_stride = static_cast<int>(kids.size()) + 1;  // the launcher is id 0
+  for (std::size_t i = 0; i < kids.size(); ++i) kids[i].base_id = static_cast<int>(i) + 1;
   for (const auto& c : kids)
     if (!fs::exists(c.binary)) throw std::runtime_error("missing process binary " + c.binary);
 
@@ -180,7 +187,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   for (auto& c : kids)
     if (std::find(o.external.begin(), o.external.end(), c.name) != o.external.end()) c.external = true;
   for (auto& c : kids)
-    if (!c.external) spawn(c, o.run_dir, env);
+    if (!c.external) spawn(c, o.run_dir, env, id_stride);
   // The fleet's coordinates, for tools and for processes started by hand.
   {
     nlohmann::json fleet = {{"launcher_pid", getpid()},
@@ -190,7 +197,9 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
                             {"config", cfg},
                             {"run_dir", o.run_dir},
                             {"bin_dir", o.bin_dir}};
-    for (const auto& c : kids) fleet["processes"].push_back({{"name", c.name}, {"pid", c.pid}, {"external", c.external}});
+    for (const auto& c : kids)
+      fleet["processes"].push_back(
+          {{"name", c.name}, {"pid", c.pid}, {"external", c.external}, {"participant_id", c.base_id}});
     std::ofstream(o.run_dir + "/fleet.json.tmp") << fleet.dump(2) << "\n";
     fs::rename(o.run_dir + "/fleet.json.tmp", o.run_dir + "/fleet.json");  // readers never see half a file
   }
@@ -198,7 +207,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     if (c.external) {
       std::string cmd;
       for (const auto& [k, v] : env) cmd += k + "=" + v + " ";
-      cmd += c.binary;
+      cmd += "MAPTR_PARTICIPANT_ID=" + std::to_string(c.base_id) + " " + c.binary;
       for (const auto& a : c.args) cmd += " " + a;
       std::fprintf(stderr, "maptr: waiting for %s; start it with:\n  %s\n", c.name.c_str(), cmd.c_str());
       log.info("external {}: {}", c.name, cmd);
@@ -336,7 +345,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
         kill(it->pid, SIGKILL);
         log.warn("fault: killed {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
       } else if (it != kids.end() && f.action == "restart" && !it->running) {
-        spawn(*it, o.run_dir, env);
+        spawn(*it, o.run_dir, env, id_stride);
         publish_member(*it, msg::MEMBER_STARTED);
         log.warn("fault: restarted {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
       } else {

@@ -75,7 +75,7 @@ TEST(Faults, ASideWithoutLiveAgentsDegradesAndSaysWhy) {
 TEST(Faults, RestartedGroupControllerContinuesItsWearLedger) {
   TempDir tmp;
   const std::string out = tmp.path() + "/run";
-  auto r = run_cli(run_args(out, {"--duration", "24", "--kill", "group-L@10", "--restart", "group-L@11"}), out, 300);
+  auto r = run_cli(run_args(out, {"--duration", "40", "--kill", "group-L@10", "--restart", "group-L@11"}), out, 300);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // The restarted controller loaded the ledger it had saved, and went on counting.
   std::ifstream log(out + "/logs/group-L.log");
@@ -130,6 +130,8 @@ TEST(Faults, AnAgentStartedOutsideTheLauncherIsDetectedByLiveliness) {
     setenv("MAPTR_DOMAIN", std::to_string(fleet["domain"].get<int>()).c_str(), 1);
     setenv("MAPTR_DISCOVERY_SERVER", fleet["discovery_server"].get<std::string>().c_str(), 1);
     setenv("MAPTR_LEASE_S", std::to_string(fleet["lease_s"].get<double>()).c_str(), 1);
+    for (const auto& p : fleet["processes"])
+      if (p["name"] == "L3") setenv("MAPTR_PARTICIPANT_ID", std::to_string(p["participant_id"].get<int>()).c_str(), 1);
     const std::string bin = std::string(MAPTR_BIN_DIR) + "/maptr_agent";
     const std::string cfg = fleet["config"], dir = fleet["run_dir"];
     execl(bin.c_str(), bin.c_str(), "--id", "L3", "--config", cfg.c_str(), "--run-dir", dir.c_str(),
@@ -160,8 +162,12 @@ TEST(Faults, ChaosRunWithAFixedSeedEndsWithoutACrash) {
   EXPECT_EQ(r.summary["chaos_seed"], 7);
   EXPECT_GE(r.summary["failures"].size(), 2u);
   std::set<std::string> killed;
-  for (const auto& f : r.summary["failures"])
+  for (const auto& f : r.summary["failures"]) {
     if (f["action"] == "kill") killed.insert(f["target"].get<std::string>());
+    // A process restarted with time to spare joins the lock-step again (fresh DDS ports).
+    if (f["action"] == "restart" && f["at_s"].get<double>() < 22.0)
+      EXPECT_FALSE(f["detected_s"].is_null()) << "did not rejoin: " << f.dump();
+  }
   for (const auto& p : r.summary["processes"]) {
     // A process either ended cleanly or was SIGKILLed by the schedule: no crash, no abort.
     if (p["exit_code"] != 0) {
