@@ -120,6 +120,10 @@ void Scenario::validate() const {
   need(std::isfinite(duration_s) && duration_s > 0, src, "duration_s", duration_s, "must be positive");
   need(std::isfinite(tick_hz) && tick_hz >= 1 && tick_hz <= 10000, src, "tick_hz", tick_hz, "must be in [1, 10000]");
   need(trace_every >= 1, src, "trace_every", trace_every, "must be at least 1");
+  need(std::isfinite(initial_discharge_mAh) && initial_discharge_mAh >= 0, src, "battery.initial_discharge_mAh",
+       initial_discharge_mAh, "must be non-negative");
+  need(std::isfinite(stop_below_speed_pct) && stop_below_speed_pct >= 0 && stop_below_speed_pct < 100, src,
+       "stop_below_speed_pct", stop_below_speed_pct, "must be in [0, 100)");
   need(control.level2_period_s >= dt(), src, "control.level2_period_s", control.level2_period_s,
        "must be at least one tick");
   need(control.horizon >= 1 && control.horizon <= 1000, src, "control.horizon", control.horizon, "must be in [1, 1000]");
@@ -185,6 +189,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   top.get("tick_hz", s.tick_hz);
   top.get("realtime", s.realtime);
   top.get("trace_every", s.trace_every);
+  top.get("stop_below_speed_pct", s.stop_below_speed_pct);
   top.get("agents", s.robot.agents);
   top.get("gross_mass_kg", s.robot.gross_mass_kg);
   std::string motor = s.robot.motor.type;
@@ -211,6 +216,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   {
     MapReader b(top.child("battery"), "battery", source);
     b.get("capacity_mAh", s.robot.battery.capacity_mAh);
+    b.get("initial_discharge_mAh", s.initial_discharge_mAh);
     b.get("h", s.robot.battery.h);
     b.get("w", s.robot.battery.w);
     b.get("y", s.robot.battery.y);
@@ -296,6 +302,7 @@ std::string to_yaml(const Scenario& s) {
   e << YAML::Key << "tick_hz" << YAML::Value << s.tick_hz;
   e << YAML::Key << "realtime" << YAML::Value << s.realtime;
   e << YAML::Key << "trace_every" << YAML::Value << s.trace_every;
+  e << YAML::Key << "stop_below_speed_pct" << YAML::Value << s.stop_below_speed_pct;
   e << YAML::Key << "agents" << YAML::Value << s.robot.agents;
   e << YAML::Key << "gross_mass_kg" << YAML::Value << s.robot.gross_mass_kg;
   e << YAML::Key << "motor" << YAML::Value << s.robot.motor.type;
@@ -310,6 +317,7 @@ std::string to_yaml(const Scenario& s) {
     << YAML::Value << r.wheel_inertia_kgm2;
   e << YAML::EndMap;
   e << YAML::Key << "battery" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "initial_discharge_mAh" << YAML::Value << s.initial_discharge_mAh;
   e << YAML::Key << "capacity_mAh" << YAML::Value << r.battery.capacity_mAh << YAML::Key << "h" << YAML::Value
     << r.battery.h << YAML::Key << "w" << YAML::Value << r.battery.w << YAML::Key << "y" << YAML::Value
     << r.battery.y << YAML::Key << "z" << YAML::Value << r.battery.z;

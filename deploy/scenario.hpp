@@ -58,6 +58,10 @@ struct Scenario {
   double tick_hz = 100.0;          ///< Level-1 / plant tick rate, Hz
   bool realtime = false;           ///< pace ticks to the wall clock
   int trace_every = 1;             ///< write every n-th tick to trace.csv
+  double initial_discharge_mAh = 0.0;  ///< battery state at start (both groups), mAh
+  /// End the run once the speed has stayed more than this many percent below its reference
+  /// for 5 s after having reached it (0: never; the battery experiment runs until then).
+  double stop_below_speed_pct = 0.0;
   model::RobotParams robot;
   ControlConfig control;
   Trajectory trajectory;

@@ -7,8 +7,15 @@
 
 namespace maptr::plant {
 
-PlantCore::PlantCore(const config::Scenario& s, const std::string& trace_path)
+PlantCore::PlantCore(const config::Scenario& s, const std::string& trace_path, const std::string& assignments_path)
     : s_(s), integ_(s.robot), u_(s.robot.per_side()) {
+  x_[model::kChargeL] = x_[model::kChargeR] = s.initial_discharge_mAh;
+  for (int side = 0; side < 2; ++side) active_time_[side].assign(s.robot.per_side(), 0.0);
+  if (!assignments_path.empty()) {
+    assignments_ = std::fopen(assignments_path.c_str(), "w");
+    if (!assignments_) throw std::runtime_error("cannot write " + assignments_path);
+    std::fprintf(assignments_, "t_s,side,driving\n");
+  }
   trace_ = std::fopen(trace_path.c_str(), "w");
   if (!trace_) throw std::runtime_error("cannot write the trace " + trace_path);
   std::fprintf(trace_,
@@ -20,6 +27,11 @@ PlantCore::PlantCore(const config::Scenario& s, const std::string& trace_path)
 
 PlantCore::~PlantCore() {
   if (trace_) std::fclose(trace_);
+  if (assignments_) std::fclose(assignments_);
+}
+
+double PlantCore::drawn_mAh(int side) const {
+  return (side == 0 ? x_[model::kChargeL] : x_[model::kChargeR]) - s_.initial_discharge_mAh;
 }
 
 double PlantCore::battery_V(int side) const {
@@ -78,6 +90,29 @@ void PlantCore::advance(const std::vector<AgentApplied>& left, const std::vector
       max_err_pct_ = std::max(max_err_pct_, err);
       err_sq_sum_ += err * err;
       ++err_n_;
+    }
+  }
+  // Who drove over [t_k, t_k+1]: a row per change, and each agent's driving time.
+  for (int side = 0; side < 2; ++side) {
+    const auto& act = side == 0 ? u_.active_L : u_.active_R;
+    for (std::size_t j = 0; j < act.size(); ++j)
+      if (act[j]) active_time_[side][j] += s_.dt();
+    if (assignments_ && act != last_drive_[side]) {
+      std::string mask(act.size(), '0');
+      for (std::size_t j = 0; j < act.size(); ++j)
+        if (act[j]) mask[j] = '1';
+      std::fprintf(assignments_, "%.6f,%c,%s\n", t(), side == 0 ? 'L' : 'R', mask.c_str());
+      std::fflush(assignments_);
+      last_drive_[side] = act;
+    }
+  }
+  if (s_.stop_below_speed_pct > 0.0 && reached_ && ref_v > 0.0) {
+    const double err = 100.0 * (ref_v - x_[model::kVx]) / ref_v;
+    if (err > s_.stop_below_speed_pct) {
+      if (below_since_ < 0.0) below_since_ = t();
+      if (t() - below_since_ >= 5.0) speed_lost_ = true;
+    } else {
+      below_since_ = -1.0;
     }
   }
   integ_.step(x_, u_, t(), s_.dt());

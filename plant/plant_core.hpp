@@ -22,7 +22,9 @@ struct AgentApplied {
 
 class PlantCore {
  public:
-  PlantCore(const config::Scenario& s, const std::string& trace_path);
+  /// Writes the trace to trace_path and, when assignments_path is not empty, one row per
+  /// change of the set of driving agents to assignments_path.
+  PlantCore(const config::Scenario& s, const std::string& trace_path, const std::string& assignments_path = "");
   ~PlantCore();
   PlantCore(const PlantCore&) = delete;
   PlantCore& operator=(const PlantCore&) = delete;
@@ -43,6 +45,13 @@ class PlantCore {
   double max_speed_error_pct() const { return max_err_pct_; }
   double rms_speed_error_pct() const;
   bool reached_reference() const { return reached_; }
+  /// True once the speed has stayed more than stop_below_speed_pct below its reference for 5 s
+  /// (after having reached it); never when that option is 0.
+  bool speed_lost() const { return speed_lost_; }
+  /// Time each agent drove, s (index: side, agent).
+  const std::vector<double>& active_time(int side) const { return active_time_[side]; }
+  /// Charge drawn during the run (without the initial discharge), mAh.
+  double drawn_mAh(int side) const;
   int last_active(int side) const { return side == 0 ? last_active_L_ : last_active_R_; }
 
  private:
@@ -52,6 +61,11 @@ class PlantCore {
   model::Inputs u_;
   long long tick_ = 0;
   std::FILE* trace_ = nullptr;
+  std::FILE* assignments_ = nullptr;
+  std::vector<uint8_t> last_drive_[2];
+  std::vector<double> active_time_[2];
+  double below_since_ = -1.0;
+  bool speed_lost_ = false;
   long long ticks_done_ = 0;
   double active_sum_ = 0.0;
   double max_err_pct_ = 0.0, err_sq_sum_ = 0.0;

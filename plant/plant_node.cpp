@@ -77,7 +77,8 @@ int PlantNode::run() {
   if (!started) return 0;
 
   // 2. Lock-step.
-  PlantCore core(sc, args_.run_dir + "/trace.csv");
+  PlantCore core(sc, args_.run_dir + "/trace.csv", args_.run_dir + "/assignments.csv");
+  std::string end_reason = "duration reached";
   std::vector<Member> agent[2] = {std::vector<Member>(per_side), std::vector<Member>(per_side)};
   Member group[2], central;
   std::vector<AgentApplied> applied[2] = {std::vector<AgentApplied>(per_side), std::vector<AgentApplied>(per_side)};
@@ -167,7 +168,10 @@ int PlantNode::run() {
 
   while (!stop.load()) {
     const long long k = core.tick();
-    const bool last = k >= total;
+    if (core.speed_lost() && end_reason == "duration reached")
+      end_reason = "the speed stayed more than " + std::to_string(sc.stop_below_speed_pct) +
+                   "% below its reference for 5 s at t=" + std::to_string(core.t()) + " s";
+    const bool last = k >= total || core.speed_lost();
     publish(last ? msg::RUN_FINISHED : msg::RUN_RUNNING);
     if (last) break;
     for (int s = 0; s < 2; ++s) {
@@ -297,7 +301,7 @@ int PlantNode::run() {
   if (status == "ok") {
     if (live_end[0] == 0 || live_end[1] == 0)
       status = std::string("degraded: side ") + (live_end[0] == 0 ? "L" : "R") + " has no live agent; the robot stopped";
-    else if (core.reached_reference()) {  // a run too short to reach its speed is not degraded
+    else if (core.reached_reference() && !core.speed_lost()) {  // a run too short to reach its speed is not degraded
       const double ref_v = 0.5 * (ref_L + ref_R) * sc.robot.wheel_radius_m;
       const double err = ref_v > 0.0 ? 100.0 * std::fabs(core.state()[model::kVx] - ref_v) / ref_v : 0.0;
       if (err > 5.0)
@@ -317,7 +321,10 @@ int PlantNode::run() {
   j["mean_active_agents"] = core.mean_active_agents();
   j["active_agents"] = {{"L", core.last_active(0)}, {"R", core.last_active(1)}};
   j["live_agents"] = {{"L", live_end[0]}, {"R", live_end[1]}};
-  j["battery_discharge_mAh"] = {{"L", x[model::kChargeL]}, {"R", x[model::kChargeR]}};
+  j["battery_discharge_mAh"] = {{"L", core.drawn_mAh(0)}, {"R", core.drawn_mAh(1)}};
+  j["battery_state_mAh"] = {{"L", x[model::kChargeL]}, {"R", x[model::kChargeR]}};
+  j["agent_active_s"] = {{"L", core.active_time(0)}, {"R", core.active_time(1)}};
+  j["end_reason"] = end_reason;
   j["battery_V"] = {{"L", core.battery_V(0)}, {"R", core.battery_V(1)}};
   j["pose"] = {{"x_m", x[model::kX]}, {"y_m", x[model::kY]}, {"theta_rad", x[model::kTheta]}};
   j["final_speed_mps"] = x[model::kVx];
