@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "deploy/experiments.hpp"
 #include "deploy/faults.hpp"
 #include "deploy/launcher.hpp"
 #include "deploy/scenario.hpp"
@@ -178,6 +179,15 @@ int main(int argc, char** argv) {
   run->add_option("--chaos", ra.chaos, "random kills and restarts of agents and controllers, reproducible from SEED");
   run->add_option("--external", ra.external, "an agent you start yourself (the launcher prints the command)");
   run->add_flag("--quiet", ra.quiet, "no progress lines");
+  maptr::deploy::ExperimentOptions eo;
+  int exp_domain = -1;
+  auto* expc = app.add_subcommand("experiment", "run one of the paper's experiments on real fleets");
+  expc->add_option("name", eo.name, "experiment")
+      ->required()
+      ->check(CLI::IsMember(maptr::deploy::experiment_names()));
+  expc->add_flag("--quick", eo.quick, "short variant (what the test suite runs)");
+  expc->add_option("--out", eo.out, "output folder (default runs/<date>-experiment-<name>)");
+  expc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
   std::string target, run_dir;
   auto* killc = app.add_subcommand("kill", "SIGKILL a process of a running fleet (e.g. L3, group-R, central)");
   killc->add_option("target", target, "process name")->required();
@@ -187,6 +197,16 @@ int main(int argc, char** argv) {
   restartc->add_option("--run", run_dir, "run folder (default: the newest running one under runs/)");
   CLI11_PARSE(app, argc, argv);
   if (run->parsed()) return cmd_run(ra, argv[0]);
+  if (expc->parsed()) {
+    eo.bin_dir = bin_dir(argv[0]);
+    eo.source_dir = MAPTR_SOURCE_DIR;
+    if (eo.out.empty()) eo.out = unique_run_dir("runs", "experiment-" + eo.name + (eo.quick ? "-quick" : ""));
+    if (exp_domain >= 0)
+      eo.domain = exp_domain;
+    else if (const char* d = std::getenv("MAPTR_DOMAIN"))
+      eo.domain = std::atoi(d);
+    return maptr::deploy::run_experiment(eo);
+  }
   if (killc->parsed()) return cmd_signal("kill", target, run_dir);
   if (restartc->parsed()) return cmd_signal("restart", target, run_dir);
   return 2;

@@ -1,0 +1,19 @@
+#pragma once
+// `maptr bench scale` and `maptr bench tick`: measurements of the distributed system itself.
+#include <string>
+#include <vector>
+
+namespace maptr::deploy {
+
+struct BenchOptions {
+  std::string what;                 ///< "scale" | "tick"
+  std::vector<int> agents{4, 8, 16, 32, 64, 128, 256};
+  double duration_s = 30.0;         ///< simulated seconds per run
+  std::string out;                  ///< output folder
+  std::string bin_dir, source_dir;
+  int domain = 0;
+};
+
+int run_bench(const BenchOptions& o);
+
+}  // namespace maptr::deploy
