@@ -39,22 +39,22 @@ namespace maptr::comm {
 /// Publishes this process's NodeReady (once every needed endpoint is matched).
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, uint8_t kind);
 
-/// Follows the plant's liveliness on a reader of its ticks. The plant counts as lost once it
-/// was seen, then reported gone (lease expired or writer unmatched) and not heard from again
+/// Follows the plant's liveliness on a reader of its ticks. The plant counts as lost once a
+/// tick of it was received, then it was reported gone (lease expired or writer unmatched) and not heard from again
 /// for `grace_s` of wall time: a liveliness flap of a live but starved plant is not a loss.
 class PlantWatch {
  public:
   explicit PlantWatch(double grace_s) : grace_(grace_s) {}
   void update(const std::vector<LivelinessEvent>& events) {
     for (const auto& e : events) {
-      if (e.alive) heard();
+      if (e.alive) down_ = false;
       if (!e.alive && seen_ && !down_) {
         down_ = true;
         since_ = std::chrono::steady_clock::now();
       }
     }
   }
-  /// A tick or an alive report: the plant is there.
+  /// A tick: the plant is there.
   void heard() {
     seen_ = true;
     down_ = false;

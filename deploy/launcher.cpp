@@ -138,7 +138,8 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   dds.discovery_server = "127.0.0.1:" + std::to_string(free_udp_port());
   dds.is_server = true;
   dds.participant_id = 0;
-  dds.lease_s = std::max(2.0, 0.02 * sc.robot.agents);
+  // Leases grow with the fleet: on two cores a large fleet starves participants for seconds.
+  dds.lease_s = std::max(2.0, 0.05 * sc.robot.agents);
   comm::Signal signal;
   comm::Inbox<msg::NodeReady> ready(signal);
   comm::Inbox<msg::PlantTick> ticks(signal);

@@ -7,7 +7,9 @@
 #include <ctime>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
+#include "deploy/bench.hpp"
 #include "deploy/experiments.hpp"
 #include "deploy/faults.hpp"
 #include "deploy/launcher.hpp"
@@ -188,6 +190,14 @@ int main(int argc, char** argv) {
   expc->add_flag("--quick", eo.quick, "short variant (what the test suite runs)");
   expc->add_option("--out", eo.out, "output folder (default runs/<date>-experiment-<name>)");
   expc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
+  maptr::deploy::BenchOptions bo;
+  std::string bench_agents;
+  auto* benchc = app.add_subcommand("bench", "measure the distributed system: scale (N agents) or tick (latency)");
+  benchc->add_option("what", bo.what, "scale or tick")->required()->check(CLI::IsMember({"scale", "tick"}));
+  benchc->add_option("--agents", bench_agents, "comma-separated fleet sizes (scale) or one size (tick)");
+  benchc->add_option("--duration", bo.duration_s, "simulated seconds per run")->check(CLI::PositiveNumber);
+  benchc->add_option("--out", bo.out, "output folder (default runs/<date>-bench-<what>)");
+  benchc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
   std::string target, run_dir;
   auto* killc = app.add_subcommand("kill", "SIGKILL a process of a running fleet (e.g. L3, group-R, central)");
   killc->add_option("target", target, "process name")->required();
@@ -206,6 +216,27 @@ int main(int argc, char** argv) {
     else if (const char* d = std::getenv("MAPTR_DOMAIN"))
       eo.domain = std::atoi(d);
     return maptr::deploy::run_experiment(eo);
+  }
+  if (benchc->parsed()) {
+    bo.bin_dir = bin_dir(argv[0]);
+    bo.source_dir = MAPTR_SOURCE_DIR;
+    if (!bench_agents.empty()) {
+      bo.agents.clear();
+      std::stringstream ss(bench_agents);
+      for (std::string x; std::getline(ss, x, ',');) {
+        try {
+          bo.agents.push_back(std::stoi(x));
+        } catch (...) {
+          std::cerr << "maptr: --agents " << bench_agents << ": '" << x << "' is not a number\n";
+          return 2;
+        }
+      }
+    } else if (bo.what == "tick") {
+      bo.agents = {16};
+    }
+    if (bo.out.empty()) bo.out = unique_run_dir("runs", "bench-" + bo.what);
+    bo.domain = exp_domain >= 0 ? exp_domain : (std::getenv("MAPTR_DOMAIN") ? std::atoi(std::getenv("MAPTR_DOMAIN")) : 0);
+    return maptr::deploy::run_bench(bo);
   }
   if (killc->parsed()) return cmd_signal("kill", target, run_dir);
   if (restartc->parsed()) return cmd_signal("restart", target, run_dir);

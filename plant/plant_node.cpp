@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -100,6 +101,10 @@ int PlantNode::run() {
   const long long total = sc.ticks();
   const auto wall0 = Clock::now();
   std::string status = "ok";
+  // Wall-clock cost of each lock-step tick, µs (diagnostics for `maptr bench tick`).
+  struct {
+    std::vector<float> publish, first_reply, barrier, integrate, tick;
+  } timing;
 
   auto live_mask = [&](int s) {
     std::vector<uint8_t> m(per_side);
@@ -172,6 +177,7 @@ int PlantNode::run() {
       end_reason = "the speed stayed more than " + std::to_string(sc.stop_below_speed_pct) +
                    "% below its reference for 5 s at t=" + std::to_string(core.t()) + " s";
     const bool last = k >= total || core.speed_lost();
+    const auto t_pub = Clock::now();
     publish(last ? msg::RUN_FINISHED : msg::RUN_RUNNING);
     if (last) break;
     for (int s = 0; s < 2; ++s) {
@@ -181,6 +187,7 @@ int PlantNode::run() {
     }
     central.answered = false;
     const auto tick_start = Clock::now();
+    Clock::time_point t_first{};
     bool got_central = false, got_group[2] = {false, false};
     for (;;) {
       // Membership first, then the samples.
@@ -211,6 +218,7 @@ int PlantNode::run() {
           if (!ok) log_->warn("rejected a malformed agent reply (side {}, index {}, V {})", r.side(), r.index(), r.voltage_V());
           continue;
         }
+        if (t_first == Clock::time_point{}) t_first = Clock::now();
         Member& m = agent[r.side()][r.index()];
         mark_alive(m, config::agent_name(r.side(), r.index()));
         m.answered = true;
@@ -286,7 +294,17 @@ int PlantNode::run() {
     (void)got_central;
     (void)got_group;
     int live_n[2] = {count(live_mask(0)), count(live_mask(1))};
+    const auto t_complete = Clock::now();
     core.advance(applied[0], applied[1], ref_L, ref_R, live_n[0], live_n[1]);
+    const auto t_done = Clock::now();
+    auto us = [](Clock::time_point a, Clock::time_point b) {
+      return static_cast<float>(std::chrono::duration<double, std::micro>(b - a).count());
+    };
+    timing.publish.push_back(us(t_pub, tick_start));
+    if (t_first != Clock::time_point{}) timing.first_reply.push_back(us(tick_start, t_first));
+    timing.barrier.push_back(us(tick_start, t_complete));
+    timing.integrate.push_back(us(t_complete, t_done));
+    timing.tick.push_back(us(t_pub, t_done));
     if (sc.realtime) {
       const auto due = wall0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(core.t()));
       if (Clock::now() > due)
@@ -332,6 +350,17 @@ int PlantNode::run() {
   j["rms_speed_error_pct"] = core.rms_speed_error_pct();
   j["rejected_samples"] = rejected;
   j["missed_deadlines"] = missed_deadlines;
+  auto stats = [](std::vector<float> v) {
+    if (v.empty()) return nlohmann::json::object();
+    std::sort(v.begin(), v.end());
+    auto q = [&](double p) { return v[static_cast<std::size_t>(p * (v.size() - 1))]; };
+    return nlohmann::json{{"median", q(0.5)}, {"p90", q(0.9)}, {"p99", q(0.99)}, {"n", v.size()}};
+  };
+  j["tick_timing_us"] = {{"publish", stats(timing.publish)},
+                         {"first_reply", stats(timing.first_reply)},
+                         {"barrier", stats(timing.barrier)},
+                         {"integrate", stats(timing.integrate)},
+                         {"tick", stats(timing.tick)}};
   j["declared_dead_by_deadline"] = declared_dead;
   j["membership_events"] = events;
   std::ofstream(args_.run_dir + "/plant.json") << j.dump(2) << "\n";
