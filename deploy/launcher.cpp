@@ -257,7 +257,9 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       c->signal = WIFSIGNALED(st) ? WTERMSIG(st) : 0;
       c->max_rss_kB = std::max(c->max_rss_kB, ru.ru_maxrss);
       if (c->name == "plant") plant_done = true;
-      if (!expected && c->name != "plant") {
+      // A clean exit is a process that saw the plant's last tick; anything else is a failure.
+      const bool clean = c->exit_code == 0 && c->signal == 0;
+      if (!expected && !clean && c->name != "plant") {
         publish_member(*c, msg::MEMBER_DIED);
         log.warn("{} (pid {}) died: exit {} signal {}", c->name, pid, c->exit_code, c->signal);
       }
