@@ -79,9 +79,11 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   // Shared memory carries the data between processes on this host; UDP on loopback carries
   // discovery (to the server) and is the fallback.
   q.transport().use_builtin_transports = false;
-  auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
-  if (o.shm_segment_bytes > 0) shm->segment_size(o.shm_segment_bytes);
-  q.transport().user_transports.push_back(shm);
+  if (o.shm) {
+    auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
+    if (o.shm_segment_bytes > 0) shm->segment_size(o.shm_segment_bytes);
+    q.transport().user_transports.push_back(shm);
+  }
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   udp->interfaceWhiteList.emplace_back("127.0.0.1");
   q.transport().user_transports.push_back(udp);
@@ -174,6 +176,7 @@ DdsOptions options_from_env() {
   if (const char* d = std::getenv("MAPTR_DOMAIN")) o.domain = std::atoi(d);
   if (const char* s = std::getenv("MAPTR_DISCOVERY_SERVER")) o.discovery_server = s;
   if (const char* l = std::getenv("MAPTR_LEASE_S")) o.lease_s = std::atof(l);
+  if (const char* t = std::getenv("MAPTR_TRANSPORT")) o.shm = std::string(t) != "udp";
   if (const char* id = std::getenv("MAPTR_PARTICIPANT_ID")) o.participant_id = std::atoi(id);
   if (const char* m = std::getenv("MAPTR_SHM_SEGMENT_BYTES")) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
   return o;

@@ -34,6 +34,7 @@ struct DdsOptions {
   bool is_server = false;               ///< this participant is the discovery server (launcher)
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
   int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
+  bool shm = true;                      ///< shared memory for data (else UDP on loopback only)
 };
 
 /// Topic names (one place).

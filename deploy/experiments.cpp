@@ -14,10 +14,15 @@
 
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/spdlog.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -38,6 +43,11 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Ctrl-C / SIGTERM: the fleet running now ends (its launcher sees the signal too when it comes
+// from the terminal), and no further variant starts.
+volatile std::sig_atomic_t g_stop = 0;
+void on_stop_signal(int) { g_stop = 1; }
 
 // ---------------------------------------------------------------------------------------------
 // The paper's Table "Straight-line power saving for a 16 agent system" (Type-I motors,
@@ -201,6 +211,7 @@ struct Run {
   config::Scenario s;
   json summary = json::object();
   bool reused = false;
+  bool retried = false;
   // Derived from trace.csv.
   double t_reach_s = kNaN;       ///< first time within 2% of the reference speed
   double v_end_mps = kNaN;       ///< mean speed over the last 10% of the run
@@ -373,33 +384,76 @@ class Experiment {
       r.summary = old;
       r.reused = true;
     } else {
-      std::error_code ec;
-      fs::remove_all(r.dir, ec);  // a stale wear ledger would be resumed by the group controllers
-      fs::create_directories(r.dir + "/logs");
-      auto log = std::make_shared<spdlog::logger>(
-          "launcher", std::make_shared<spdlog::sinks::basic_file_sink_mt>(r.dir + "/logs/launcher.log", true));
-      log->flush_on(spdlog::level::info);
-      LaunchOptions lo;
-      lo.scenario = s;
-      lo.run_dir = r.dir;
-      lo.bin_dir = o_.bin_dir;
-      lo.domain = o_.domain;
-      lo.progress = false;
-      try {
-        r.summary = launch(lo, *log);
-      } catch (const std::exception& e) {
-        r.summary = {{"status", std::string("aborted: ") + e.what()}};
+      r.summary = launch_isolated(r.dir, s);
+      // A launcher that died or a fleet that never started (discovery) is not a result of the
+      // experiment: try once more and say so.
+      const std::string first = r.status();
+      if (r.aborted() && first.find("interrupted") == std::string::npos && !g_stop) {
+        std::fprintf(stderr, "maptr: %s %s %s: %s; running it once more\n", head, o_.name.c_str(), label.c_str(),
+                     first.c_str());
+        r.summary = launch_isolated(r.dir, s);
+        r.summary["first_attempt"] = first;
+        r.retried = true;
       }
     }
     derive(r);
     const std::string st = r.status();
     if (r.aborted()) any_aborted_ = true;
-    if (st.find("interrupted") != std::string::npos) interrupted_ = true;
+    if (st.find("interrupted") != std::string::npos || g_stop) interrupted_ = true;
     std::fprintf(stderr, "maptr: %s %s %s: %.0f s simulated in %.0f s, status %s%s\n", head, o_.name.c_str(),
                  label.c_str(), r.summary.value("sim_time_s", 0.0), r.summary.value("wall_time_s", 0.0), st.c_str(),
                  r.reused ? " (reused: this scenario already ran in this folder)" : "");
     runs_.push_back(r);
     return r;
+  }
+
+  /// One launch() in a child process of its own: the experiment process never holds a DDS
+  /// participant, so a fault inside Fast DDS ends one run, not the experiment, and no DDS state
+  /// is carried from one fleet to the next. The child dies with the experiment.
+  json launch_isolated(const std::string& run_dir, const config::Scenario& s) {
+    std::error_code ec;
+    fs::remove_all(run_dir, ec);  // a stale wear ledger would be resumed by the group controllers
+    fs::create_directories(run_dir + "/logs");
+    std::fflush(nullptr);
+    const pid_t parent = getpid();
+    const pid_t pid = fork();
+    if (pid < 0) return {{"status", "aborted: fork failed"}};
+    if (pid == 0) {
+      prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (getppid() != parent) _exit(1);
+      std::signal(SIGINT, SIG_DFL);
+      std::signal(SIGTERM, SIG_DFL);
+      int rc = 0;
+      try {
+        auto log = std::make_shared<spdlog::logger>(
+            "launcher", std::make_shared<spdlog::sinks::basic_file_sink_mt>(run_dir + "/logs/launcher.log", true));
+        log->flush_on(spdlog::level::info);
+        LaunchOptions lo;
+        lo.scenario = s;
+        lo.run_dir = run_dir;
+        lo.bin_dir = o_.bin_dir;
+        lo.domain = o_.domain;
+        lo.progress = false;
+        launch(lo, *log);  // writes run_dir/summary.json
+        log->flush();
+      } catch (const std::exception& e) {
+        std::ofstream(run_dir + "/summary.json") << json{{"status", std::string("aborted: ") + e.what()}}.dump(2);
+        rc = 1;
+      }
+      std::fflush(nullptr);
+      _exit(rc);
+    }
+    int st = 0;
+    while (waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+    }
+    json sum = read_json_file(run_dir + "/summary.json");
+    if (!sum.is_object() || !sum.contains("status")) {
+      std::string why = WIFSIGNALED(st) ? "the launcher died of signal " + std::to_string(WTERMSIG(st))
+                                        : "the launcher exited with " + std::to_string(WEXITSTATUS(st));
+      sum = {{"status", "aborted: " + why + " without a summary (see runs/" + fs::path(run_dir).filename().string() +
+                            "/logs)"}};
+    }
+    return sum;
   }
 
   /// Writes <name>.csv, <name>.md and summary.json.
@@ -414,7 +468,9 @@ class Experiment {
        << md_after << (md_after.empty() ? "" : "\n\n") << "Runs (each a whole fleet of processes):\n\n"
        << "| variant | status | simulated s | wall s | folder |\n|---|---|---|---|---|\n";
     for (const auto& r : runs_)
-      md << "| " << r.label << " | " << r.status() << (r.reused ? " (reused)" : "") << " | "
+      md << "| " << r.label << " | " << r.status() << (r.reused ? " (reused)" : "")
+         << (r.retried ? " (second attempt; the first: " + r.summary.value("first_attempt", std::string()) + ")" : "")
+         << " | "
          << fixed(r.summary.value("sim_time_s", 0.0), 1) << " | " << fixed(r.summary.value("wall_time_s", 0.0), 0)
          << " | runs/" << r.id << " |\n";
     std::ofstream(o_.out + "/" + o_.name + ".md") << md.str();
@@ -427,6 +483,7 @@ class Experiment {
                       {"folder", "runs/" + r.id},
                       {"status", r.status()},
                       {"reused", r.reused},
+                      {"retried", r.retried},
                       {"sim_time_s", r.summary.value("sim_time_s", 0.0)},
                       {"wall_time_s", r.summary.value("wall_time_s", 0.0)},
                       {"real_time_factor", r.summary.value("real_time_factor", 0.0)}});
@@ -438,7 +495,7 @@ class Experiment {
   bool plot(const std::string& stem, const std::string& body) {
     const std::string gp = o_.out + "/" + stem + ".gp";
     std::ofstream(gp) << "# made by `" << command() << "`; run in this folder: gnuplot " << stem << ".gp\n"
-                      << "set terminal pngcairo size 900,600 font ',11'\n"
+                      << "set terminal pngcairo size 900,600 font ',11' noenhanced\n"
                       << "set output '" << stem << ".png'\n"
                       << "set datafile separator ','\n"
                       << "set datafile columnheaders\n"
@@ -981,8 +1038,8 @@ int exp_wear(Experiment& e) {
       const int steps = static_cast<int>(std::ceil(T / t_on - 1e-9));
       std::ofstream tr(e.dir() + "/transitions-N" + std::to_string(n) + ".csv");
       tr << "step,t_start_s,agent,name,driving_fraction\n";
-      for (int k = 0; k < steps; ++k)
-        for (int a = 0; a < n; ++a) {
+      for (int a = 0; a < n; ++a)  // gnuplot's "with image" wants x (the step) to vary fastest
+        for (int k = 0; k < steps; ++k) {
           const double s0 = k * t_on, s1 = std::min(T, (k + 1) * t_on);
           double on = 0;
           for (const auto& x : iv[a]) on += std::max(0.0, std::min(x.t1, s1) - std::max(x.t0, s0));
@@ -1041,6 +1098,11 @@ int exp_failures(Experiment& e) {
   const bool q = e.quick();
   const double gross = 23.2, speed = 10.0, duration = q ? 30.0 : 60.0, kill_at = q ? 15.0 : 20.0;
   const int n = 16, per_side = n / 2;
+  // Kill order per side: the agents driving at the kill time in the fault-free run (which the
+  // faulty runs repeat exactly up to the kill: the lock-step is deterministic), then the others.
+  std::vector<int> order[2];
+  for (int side = 0; side < 2; ++side)
+    for (int j = 0; j < per_side; ++j) order[side].push_back(j);
   auto scenario = [&](int k) {
     config::Scenario s = e.base();
     s.robot.agents = n;
@@ -1049,13 +1111,14 @@ int exp_failures(Experiment& e) {
     Experiment::straight(s, speed, duration);
     s.trace_every = 10;
     for (int side = 0; side < 2; ++side)
-      for (int j = 0; j < k; ++j) s.faults.push_back(config::FaultSpec{config::agent_name(side, j), "kill", kill_at});
+      for (int j = 0; j < k; ++j)
+        s.faults.push_back(config::FaultSpec{config::agent_name(side, order[side][j]), "kill", kill_at});
     return s;
   };
   Table t;
   t.cols = {{"killed_per_side", "killed per side", 0},
             {"tolerance", "tolerance N_i - N_a,i", 0},
-            {"killed", "killed", -1, false},
+            {"killed", "killed", -1},
             {"detected", "detected", 0},
             {"detect_wall_ms_max", "detection wall ms (max)", 1},
             {"recovered", "recovered", 0},
@@ -1074,6 +1137,20 @@ int exp_failures(Experiment& e) {
   for (std::size_t i = 0; i < ks.size(); ++i) {
     const int k = ks[i];
     const Run r = e.run("kill-" + std::to_string(k), std::to_string(k) + " killed per side", scenario(k));
+    if (k == 0 && !r.aborted()) {
+      const auto iv = driving_intervals(r.dir + "/assignments.csv", per_side, r.sim_s());
+      for (int side = 0; side < 2; ++side) {
+        std::vector<int> on, off;
+        for (int j = 0; j < per_side; ++j) {
+          bool driving = false;
+          for (const auto& x : iv[side * per_side + j])
+            if (x.t0 <= kill_at && kill_at < x.t1) driving = true;
+          (driving ? on : off).push_back(j);
+        }
+        order[side] = on;
+        order[side].insert(order[side].end(), off.begin(), off.end());
+      }
+    }
     if (k == 0 && !q) {
       // Tolerance from the fault-free run: N_i - N_a,i (the smaller of the two sides).
       const int na = std::max(r.active_side("L"), r.active_side("R"));
@@ -1089,7 +1166,7 @@ int exp_failures(Experiment& e) {
                 {"status", r.status()}};
     std::string killed;
     for (int side = 0; side < 2; ++side)
-      for (int j = 0; j < k; ++j) killed += (killed.empty() ? "" : " ") + config::agent_name(side, j);
+      for (int j = 0; j < k; ++j) killed += (killed.empty() ? "" : " ") + config::agent_name(side, order[side][j]);
     row["killed"] = killed;
     if (!r.aborted()) {
       int detected = 0, recovered = 0;
@@ -1124,8 +1201,8 @@ int exp_failures(Experiment& e) {
   std::ostringstream intro;
   intro << "EC, 16 agents, gross mass " << gross << " kg, straight line at " << speed << " m/s for " << duration
         << " s simulated. At t = " << kill_at
-        << " s the launcher SIGKILLs agents L0..L(k-1) and R0..R(k-1) (the first ones Level 3 takes at equal wear, so "
-           "the active ones die first). The tolerance N_i - N_a,i is read from the fault-free run (k = 0); the "
+        << " s the launcher SIGKILLs k agents per side: first those driving at that moment in the fault-free run "
+           "(the faulty runs repeat it exactly up to the kill), then idle ones by index (column 'killed'). The tolerance N_i - N_a,i is read from the fault-free run (k = 0); the "
            "experiment goes up to two kills beyond it (at most every agent of a side). 'max speed error' is the "
            "largest deviation from the reference between the kill and the end of the run (the whole run once the "
            "speed was first reached, for k = 0); 'recovered' counts the kills after which the speed came back within "
@@ -1166,6 +1243,8 @@ int run_experiment(const ExperimentOptions& o) {
   }
   try {
     fs::create_directories(o.out);
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
     Experiment e(o);
     std::fprintf(stderr, "maptr: experiment %s%s, results in %s\n", o.name.c_str(), o.quick ? " (quick)" : "",
                  o.out.c_str());

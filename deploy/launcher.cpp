@@ -140,6 +140,9 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   dds.participant_id = 0;
   // Leases grow with the fleet: on two cores a large fleet starves participants for seconds.
   dds.lease_s = std::max(2.0, 0.05 * sc.robot.agents);
+  const std::string transport =
+      o.transport != "auto" ? o.transport : (sc.robot.agents <= 128 ? std::string("shm") : std::string("udp"));
+  dds.shm = transport == "shm";
   comm::Signal signal;
   comm::Inbox<msg::NodeReady> ready(signal);
   comm::Inbox<msg::PlantTick> ticks(signal);
@@ -151,6 +154,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   auto* w_control = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
 
   const std::map<std::string, std::string> env = {
+      {"MAPTR_TRANSPORT", transport},
       {"MAPTR_DOMAIN", std::to_string(o.domain)},
       {"MAPTR_DISCOVERY_SERVER", dds.discovery_server},
       {"MAPTR_LEASE_S", std::to_string(dds.lease_s)}};
@@ -187,10 +191,8 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   auto since = [&](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   for (auto& c : kids)
     if (std::find(o.external.begin(), o.external.end(), c.name) != o.external.end()) c.external = true;
-  for (auto& c : kids)
-    if (!c.external) spawn(c, o.run_dir, env, id_stride);
-  // The fleet's coordinates, for tools and for processes started by hand.
-  {
+  // The fleet's coordinates, for tools and for processes started by hand (rewritten as waves start).
+  auto write_fleet = [&] {
     nlohmann::json fleet = {{"launcher_pid", getpid()},
                             {"domain", o.domain},
                             {"discovery_server", dds.discovery_server},
@@ -203,7 +205,21 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
           {{"name", c.name}, {"pid", c.pid}, {"external", c.external}, {"participant_id", c.base_id}});
     std::ofstream(o.run_dir + "/fleet.json.tmp") << fleet.dump(2) << "\n";
     fs::rename(o.run_dir + "/fleet.json.tmp", o.run_dir + "/fleet.json");  // readers never see half a file
-  }
+  };
+  // Staggered launch: the controllers and a first wave of agents, then one wave of agents at a
+  // time once the previous wave has matched the plant (or after 20 s): a herd of hundreds of
+  // participants starting at once starves the discovery server on two cores.
+  constexpr std::size_t kWave = 32;
+  std::size_t spawned = 0;
+  auto wave_started = Clock::now();
+  auto spawn_wave = [&] {
+    const std::size_t end = std::min(kids.size(), (spawned == 0 ? 4 : spawned) + kWave);
+    for (; spawned < end; ++spawned)
+      if (!kids[spawned].external) spawn(kids[spawned], o.run_dir, env, id_stride);
+    wave_started = Clock::now();
+    write_fleet();
+  };
+  spawn_wave();
   for (const auto& c : kids)
     if (c.external) {
       std::string cmd;
@@ -219,7 +235,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   int control_fd = -1;
   if (mkfifo(fifo.c_str(), 0600) == 0) control_fd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
   std::string control_buf;
-  log.info("launched {} processes (discovery server {})", kids.size(), dds.discovery_server);
+  log.info("launching {} processes in waves (discovery server {})", kids.size(), dds.discovery_server);
   if (o.progress)
     std::fprintf(stderr, "maptr: launched %zu processes (%d agents, 2 groups, central, plant)\n", kids.size(),
                  sc.robot.agents);
@@ -279,9 +295,18 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
           if (c.external && c.name == r.name()) c.pid = static_cast<pid_t>(r.pid());
       }
     reap(false);
+    if (spawned < kids.size()) {
+      bool wave_ready = true;
+      for (std::size_t i = 4; i < spawned; ++i)
+        if (!kids[i].external && !ready_names.count(kids[i].name)) wave_ready = false;
+      if (wave_ready || since(wave_started) > 20.0) {
+        spawn_wave();
+        log.info("launched agents up to {} of {}", spawned - 4, kids.size() - 4);
+      }
+    }
     bool early_death = false;
-    for (auto& c : kids)
-      if (!c.running && !c.external) early_death = true;
+    for (std::size_t i = 0; i < spawned; ++i)
+      if (!kids[i].running && !kids[i].external) early_death = true;
     if (early_death || g_interrupted.load() || since(t_launch) > discovery_timeout) {
       std::string missing;
       for (auto& c : kids)
@@ -429,6 +454,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   summary["active_agents"] = plant.value("active_agents", nlohmann::json{{"L", act_L}, {"R", act_R}});
   summary["battery_discharge_mAh"] = plant.value("battery_discharge_mAh", nlohmann::json{{"L", 0}, {"R", 0}});
   summary["discovery_s"] = discovery_s;
+  summary["transport"] = transport;
   analyse_faults(failures, plant.value("membership_events", nlohmann::json::array()), o.run_dir + "/trace.csv",
                  sc.robot.wheel_radius_m);
   summary["failures"] = failures;

@@ -48,6 +48,7 @@ struct RunArgs {
   int domain = -1, trace_every = 0;
   std::vector<std::string> kills, restarts, external;
   long long chaos = -1;
+  std::string transport = "auto";
 };
 
 void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::string& action) {
@@ -107,6 +108,7 @@ int cmd_run(const RunArgs& a, const char* argv0) {
   o.bin_dir = bin_dir(argv0);
   o.progress = !a.quiet;
   o.external = a.external;
+  o.transport = a.transport;
   o.chaos_seed = a.chaos;
   o.domain = a.domain >= 0 ? a.domain : (std::getenv("MAPTR_DOMAIN") ? std::atoi(std::getenv("MAPTR_DOMAIN")) : 0);
   fs::create_directories(o.run_dir + "/logs");
@@ -180,6 +182,8 @@ int main(int argc, char** argv) {
   run->add_option("--restart", ra.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
   run->add_option("--chaos", ra.chaos, "random kills and restarts of agents and controllers, reproducible from SEED");
   run->add_option("--external", ra.external, "an agent you start yourself (the launcher prints the command)");
+  run->add_option("--transport", ra.transport, "data transport: shm, udp or auto (shm up to 128 agents)")
+      ->check(CLI::IsMember({"auto", "shm", "udp"}));
   run->add_flag("--quiet", ra.quiet, "no progress lines");
   maptr::deploy::ExperimentOptions eo;
   int exp_domain = -1;
