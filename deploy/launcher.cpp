@@ -141,7 +141,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   // Leases grow with the fleet: on two cores a large fleet starves participants for seconds.
   dds.lease_s = std::max(2.0, 0.05 * sc.robot.agents);
   const std::string transport =
-      o.transport != "auto" ? o.transport : (sc.robot.agents <= 128 ? std::string("shm") : std::string("udp"));
+      o.transport != "auto" ? o.transport : (sc.robot.agents <= 64 ? std::string("shm") : std::string("udp"));
   dds.shm = transport == "shm";
   comm::Signal signal;
   comm::Inbox<msg::NodeReady> ready(signal);

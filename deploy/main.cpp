@@ -182,7 +182,7 @@ int main(int argc, char** argv) {
   run->add_option("--restart", ra.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
   run->add_option("--chaos", ra.chaos, "random kills and restarts of agents and controllers, reproducible from SEED");
   run->add_option("--external", ra.external, "an agent you start yourself (the launcher prints the command)");
-  run->add_option("--transport", ra.transport, "data transport: shm, udp or auto (shm up to 128 agents)")
+  run->add_option("--transport", ra.transport, "data transport: shm, udp or auto (shm up to 64 agents)")
       ->check(CLI::IsMember({"auto", "shm", "udp"}));
   run->add_flag("--quiet", ra.quiet, "no progress lines");
   maptr::deploy::ExperimentOptions eo;
