@@ -182,7 +182,7 @@ int bench_scale(const BenchOptions& o) {
                   median(mem.agent_pss_kB), pss_max, mem.total_pss_kB, samples, tick_med, tick_p99);
     csv << row << std::flush;
     std::snprintf(row, sizeof(row), "| %d | %s | %.2f | %.1f | %.2f | %.2f | %.1f | %.1f | %.0f | %d | %.2f | %.2f |\n",
-                  n, status.c_str(), sum.value("discovery_s", 0.0), wall > 0 ? sum.value("ticks", 0) / wall : 0.0, rtf,
+                  n, (status.size() > 70 ? status.substr(0, 70) + "..." : status).c_str(), sum.value("discovery_s", 0.0), wall > 0 ? sum.value("ticks", 0) / wall : 0.0, rtf,
                   sim > 0 ? cpu / sim : 0.0, median(mem.agent_pss_kB) / 1024.0, pss_max / 1024.0,
                   mem.total_pss_kB / 1024.0, samples, tick_med / 1000.0, tick_p99 / 1000.0);
     md << row;
