@@ -1,6 +1,7 @@
 // Fault tests (ctest label `faults`): real fleets, real SIGKILLs of real processes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -92,7 +93,9 @@ TEST(Faults, RestartedGroupControllerContinuesItsWearLedger) {
   for (double w : ledger["wear_m"].get<std::vector<double>>()) wear += w;
   EXPECT_GT(wear, 100.0);  // more than the first 10 s could give one active set
   for (const auto& p : r.summary["processes"])
-    if (p["name"] == "group-L") EXPECT_EQ(p["starts"], 2);
+    if (p["name"] == "group-L") {
+      EXPECT_EQ(p["starts"], 2);
+    }
   EXPECT_NE(event_of(r.summary, "group-L", "rejoined"), nullptr);
 }
 
@@ -165,8 +168,9 @@ TEST(Faults, ChaosRunWithAFixedSeedEndsWithoutACrash) {
   for (const auto& f : r.summary["failures"]) {
     if (f["action"] == "kill") killed.insert(f["target"].get<std::string>());
     // A process restarted with time to spare joins the lock-step again (fresh DDS ports).
-    if (f["action"] == "restart" && f["at_s"].get<double>() < 22.0)
+    if (f["action"] == "restart" && f["at_s"].get<double>() < 22.0) {
       EXPECT_FALSE(f["detected_s"].is_null()) << "did not rejoin: " << f.dump();
+    }
   }
   for (const auto& p : r.summary["processes"]) {
     // A process either ended cleanly or was SIGKILLed by the schedule: no crash, no abort.
@@ -174,5 +178,71 @@ TEST(Faults, ChaosRunWithAFixedSeedEndsWithoutACrash) {
       EXPECT_EQ(p["signal"], 9) << p.dump();
       EXPECT_TRUE(killed.count(p["name"].get<std::string>())) << p.dump();
     }
+  }
+}
+
+TEST(Faults, KilledCentralMakesTheAgentsStopSafelyAndARestartedOneResumes) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  // Central silent for more than control.central_timeout_s (1 s): agents ramp their reference
+  // to zero at 2 m/s^2, so their voltage drops to 0 and the robot coasts (the driver cannot
+  // brake: it only slows by friction and drag); the restarted central brings the speed back.
+  auto r = run_cli(run_args(out, {"--mode", "all", "--duration", "30", "--kill", "central@10", "--restart",
+                                  "central@16"}),
+                   out, 300);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream trace(out + "/trace.csv");
+  std::string line;
+  std::getline(trace, line);
+  double v_min_outage = 1e9, volt_min_outage = 1e9, v_end = 0;
+  while (std::getline(trace, line)) {
+    std::vector<double> c;
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');) c.push_back(std::stod(f));
+    if (c[1] > 12.0 && c[1] < 16.0) {
+      v_min_outage = std::min(v_min_outage, c[5]);
+      volt_min_outage = std::min(volt_min_outage, c[11]);
+    }
+    v_end = c[5];
+  }
+  EXPECT_LT(volt_min_outage, 0.01) << "the agents kept driving without central";
+  EXPECT_LT(v_min_outage, 9.8) << "the robot did not slow down without central";
+  EXPECT_NEAR(v_end, 10.0, 0.3) << "the restarted central did not bring the speed back";
+  EXPECT_NE(event_of(r.summary, "central", "rejoined"), nullptr);
+}
+
+TEST(Faults, KilledPlantEndsTheRunWithAClearErrorAndKeepsTheTrace) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  auto r = run_cli(run_args(out, {"--duration", "30", "--kill", "plant@5"}), out, 300);
+  EXPECT_EQ(r.exit_code, 1) << r.output;  // aborted
+  const std::string status = r.summary["status"];
+  EXPECT_EQ(status.rfind("aborted: the plant ended without results", 0), 0u) << status;
+  // The trace up to the kill is intact: every row complete, times strictly increasing to ~5 s.
+  std::ifstream trace(out + "/trace.csv");
+  std::string line;
+  std::getline(trace, line);
+  double last_t = -1;
+  int rows = 0;
+  while (std::getline(trace, line)) {
+    if (std::count(line.begin(), line.end(), ',') != 26) break;  // a partial last line is allowed
+    std::stringstream ss(line);
+    std::string f;
+    std::getline(ss, f, ',');
+    std::getline(ss, f, ',');
+    const double t = std::stod(f);
+    EXPECT_GT(t, last_t);
+    last_t = t;
+    ++rows;
+  }
+  EXPECT_GE(last_t, 4.9);
+  EXPECT_GE(rows, 490);
+  // Every other process ended by itself (lost the plant) or by the launcher, none crashed.
+  for (const auto& p : r.summary["processes"]) {
+    if (p["name"] == "plant") {
+      EXPECT_EQ(p["signal"], 9);
+      continue;
+    }
+    EXPECT_TRUE(p["signal"] == 0 || p["signal"] == 15) << p.dump();
   }
 }
