@@ -167,17 +167,3 @@ TEST(Fleet, BadScenariosAreRefusedBeforeAnyProcessStarts) {
   }
 }
 
-TEST(Fleet, SixtyFourAgentProcessesJoinAndFinish) {
-  TempDir tmp;
-  const std::string out = tmp.path() + "/run";
-  auto r = run_cli(base(out, {"--agents", "64", "--duration", "2"}), out, 400);
-  ASSERT_FALSE(r.timed_out) << r.output;
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(r.summary["status"], "ok");
-  EXPECT_EQ(r.summary["ticks"], 200);
-  // Every one of the 68 processes announced itself, ran the lock-step and ended cleanly.
-  expect_clean_exit(r.summary, 68);
-  EXPECT_EQ(r.summary["plant"]["live_agents"]["L"], 32);
-  EXPECT_EQ(r.summary["plant"]["live_agents"]["R"], 32);
-  EXPECT_EQ(r.summary["plant"]["declared_dead_by_deadline"], 0);
-}
