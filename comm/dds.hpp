@@ -31,7 +31,7 @@ struct DdsOptions {
   int domain = 0;                       ///< DDS domain id (tests use a private one)
   std::string discovery_server;         ///< "127.0.0.1:PORT": be a client of it; empty: simple discovery
   double lease_s = 2.0;                 ///< participant and liveliness lease, s
-  bool is_server = false;               ///< this participant is the discovery server (launcher)
+  bool is_server = false;               ///< this participant is the discovery server
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
   int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
   bool shm = true;                      ///< shared memory for data (else UDP on loopback only)

@@ -13,11 +13,13 @@
 extern char** environ;
 
 #include <algorithm>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -79,7 +81,20 @@ std::string sha256_of(const std::string& path) {
   return out.substr(0, out.find(' '));
 }
 
-void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std::string>& env, int id_stride) {
+/// True once some process has bound UDP port `port` on 127.0.0.1 (the discovery server is up).
+bool udp_port_bound(int port) {
+  int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return false;
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  const bool taken = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0 && errno == EADDRINUSE;
+  close(fd);
+  return taken;
+}
+
+void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std::string>& env, int participant_id) {
   // Everything the child needs is prepared before fork(): between fork and exec the child of
   // a multi-threaded process may only make async-signal-safe calls (no allocation).
   const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
@@ -89,9 +104,7 @@ void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std
     if (!env.count(kv.substr(0, kv.find('=')))) env_store.push_back(kv);
   }
   for (const auto& [k, v] : env) env_store.push_back(k + "=" + v);
-  // A fresh participant id (and so fresh ports) at every start: a restarted process never
-  // reuses the shared-memory ports its killed predecessor left behind.
-  env_store.push_back("MAPTR_PARTICIPANT_ID=" + std::to_string(c.base_id + c.starts * id_stride));
+  env_store.push_back("MAPTR_PARTICIPANT_ID=" + std::to_string(participant_id));
   std::vector<char*> envp, argv;
   for (auto& e : env_store) envp.push_back(e.data());
   envp.push_back(nullptr);
@@ -132,17 +145,57 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
-  // Discovery server inside the launcher: clients find only what they need through it.
+  // A discovery server of the fleet's own (participant id 0), started first and ended last:
+  // clients find only what they need through it. The launcher is a client too (id 1).
   comm::DdsOptions dds;
   dds.domain = o.domain;
-  dds.discovery_server = "127.0.0.1:" + std::to_string(free_udp_port());
-  dds.is_server = true;
-  dds.participant_id = 0;
+  const int ds_port = free_udp_port();
+  dds.discovery_server = "127.0.0.1:" + std::to_string(ds_port);
+  dds.participant_id = 1;
   // Leases grow with the fleet: on two cores a large fleet starves participants for seconds.
   dds.lease_s = std::max(2.0, 0.05 * sc.robot.agents);
   const std::string transport =
       o.transport != "auto" ? o.transport : (sc.robot.agents <= 64 ? std::string("shm") : std::string("udp"));
   dds.shm = transport == "shm";
+  const std::map<std::string, std::string> env = {
+      {"MAPTR_TRANSPORT", transport},
+      {"MAPTR_DOMAIN", std::to_string(o.domain)},
+      {"MAPTR_DISCOVERY_SERVER", dds.discovery_server},
+      {"MAPTR_LEASE_S", std::to_string(dds.lease_s)}};
+  const std::vector<std::string> common = {"--config", cfg, "--run-dir", o.run_dir};
+
+  // Participant ids: 0 the discovery server, 1 the launcher, then the fleet (plant, central,
+  // groups, agents). A fresh id (and so fresh ports) at every start: a restarted process never
+  // reuses the shared-memory ports its killed predecessor left behind.
+  const int id_stride = 2 + 4 + sc.robot.agents;
+  Child ds;
+  ds.name = "discovery";
+  ds.binary = o.bin_dir + "/maptr_discovery";
+  ds.args = {"--address", dds.discovery_server, "--domain", std::to_string(o.domain)};
+  if (!fs::exists(ds.binary)) throw std::runtime_error("missing process binary " + ds.binary);
+  int ds_restarts = 0;
+  std::optional<Clock::time_point> ds_restart_at;
+  // Starts the server (again) and waits until it listens.
+  auto start_discovery = [&]() -> bool {
+    spawn(ds, o.run_dir, env, ds_restarts * id_stride);  // fresh ports after a restart
+    const auto t0 = Clock::now();
+    while (std::chrono::duration<double>(Clock::now() - t0).count() < 10.0) {
+      if (udp_port_bound(ds_port)) return true;
+      int st = 0;
+      if (waitpid(ds.pid, &st, WNOHANG) == ds.pid) {
+        ds.running = false;
+        return false;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  };
+  if (!start_discovery()) {
+    if (ds.running) kill(ds.pid, SIGKILL), waitpid(ds.pid, nullptr, 0);
+    throw std::runtime_error("the discovery server did not start on " + dds.discovery_server + " (see " + o.run_dir +
+                             "/logs/discovery.stderr)");
+  }
+
   comm::Signal signal;
   comm::Inbox<msg::NodeReady> ready(signal);
   comm::Inbox<msg::PlantTick> ticks(signal);
@@ -152,13 +205,6 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &ticks);
   auto* w_member = p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched);
   auto* w_control = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
-
-  const std::map<std::string, std::string> env = {
-      {"MAPTR_TRANSPORT", transport},
-      {"MAPTR_DOMAIN", std::to_string(o.domain)},
-      {"MAPTR_DISCOVERY_SERVER", dds.discovery_server},
-      {"MAPTR_LEASE_S", std::to_string(dds.lease_s)}};
-  const std::vector<std::string> common = {"--config", cfg, "--run-dir", o.run_dir};
 
   std::vector<Child> kids;
   auto add = [&](const std::string& name, const std::string& bin, std::vector<std::string> extra, uint8_t kind,
@@ -182,8 +228,8 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       const std::string n = config::agent_name(s, j);
       add(n, "maptr_agent", {"--id", n}, msg::NODE_AGENT, static_cast<uint8_t>(s), static_cast<uint16_t>(j));
     }
-  const int id_stride = static_cast<int>(kids.size()) + 1;  // the launcher is id 0
-  for (std::size_t i = 0; i < kids.size(); ++i) kids[i].base_id = static_cast<int>(i) + 1;
+  for (std::size_t i = 0; i < kids.size(); ++i) kids[i].base_id = static_cast<int>(i) + 2;
+  auto spawn_kid = [&](Child& c) { spawn(c, o.run_dir, env, c.base_id + c.starts * id_stride); };
   for (const auto& c : kids)
     if (!fs::exists(c.binary)) throw std::runtime_error("missing process binary " + c.binary);
 
@@ -196,6 +242,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     nlohmann::json fleet = {{"launcher_pid", getpid()},
                             {"domain", o.domain},
                             {"discovery_server", dds.discovery_server},
+                            {"discovery_server_pid", ds.pid},
                             {"lease_s", dds.lease_s},
                             {"config", cfg},
                             {"run_dir", o.run_dir},
@@ -215,7 +262,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   auto spawn_wave = [&] {
     const std::size_t end = std::min(kids.size(), (spawned == 0 ? 4 : spawned) + kWave);
     for (; spawned < end; ++spawned)
-      if (!kids[spawned].external) spawn(kids[spawned], o.run_dir, env, id_stride);
+      if (!kids[spawned].external) spawn_kid(kids[spawned]);
     wave_started = Clock::now();
     write_fleet();
   };
@@ -262,10 +309,31 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   };
   // Reaps dead children; publishes deaths the fleet did not expect.
   auto reap = [&](bool expected) {
+    if (ds_restart_at && Clock::now() >= *ds_restart_at && !expected) {
+      ds_restart_at.reset();
+      if (start_discovery())
+        log.info("the discovery server runs again (pid {})", ds.pid);
+      else
+        log.error("the discovery server did not start again");
+    }
     int st = 0;
     rusage ru{};
     pid_t pid;
     while ((pid = wait4(-1, &st, WNOHANG, &ru)) > 0) {
+      if (pid == ds.pid && ds.running) {
+        ds.running = false;
+        if (!expected) {
+          // Established matches survive; the restarted server lets the clients re-register.
+          log.warn("the discovery server (pid {}) died: exit {} signal {}; starting it again", pid,
+                   WIFEXITED(st) ? WEXITSTATUS(st) : -1, WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+          ++ds_restarts;
+          // Restart only once every client's lease on the dead server has expired: a client that
+          // still counts the old server as alive would ignore the new one (its sequence numbers
+          // start again from 1); one that dropped it registers anew.
+          ds_restart_at = Clock::now() + std::chrono::milliseconds(static_cast<long>(1500 * dds.lease_s));
+        }
+        continue;
+      }
       Child* c = by_pid(pid);
       if (!c) continue;
       c->running = false;
@@ -367,13 +435,21 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       const auto f = faults[next_fault++];
       auto it = std::find_if(kids.begin(), kids.end(), [&](const Child& c) { return c.name == f.target; });
       nlohmann::json rec = {{"target", f.target}, {"action", f.action}, {"at_s", sim_t}, {"wall_ms", wall_ms_now()}};
-      if (it != kids.end() && it->external) {
+      if (f.target == "discovery") {
+        // The launcher restarts a dead discovery server by itself (see reap).
+        if (f.action == "kill" && ds.running) {
+          kill(ds.pid, SIGKILL);
+          log.warn("fault: killed the discovery server (pid {}) at t={:.2f} s", ds.pid, sim_t);
+        } else {
+          rec["skipped"] = "the discovery server is restarted by the launcher when it dies";
+        }
+      } else if (it != kids.end() && it->external) {
         rec["skipped"] = "an external process is not the launcher's to kill or start";
       } else if (it != kids.end() && f.action == "kill" && it->running) {
         kill(it->pid, SIGKILL);
         log.warn("fault: killed {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
       } else if (it != kids.end() && f.action == "restart" && !it->running) {
-        spawn(*it, o.run_dir, env, id_stride);
+        spawn_kid(*it);
         publish_member(*it, msg::MEMBER_STARTED);
         log.warn("fault: restarted {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
       } else {
@@ -415,6 +491,20 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   if (control_fd >= 0) ::close(control_fd);
   ::unlink(fifo.c_str());
   participant.reset();
+  // The discovery server goes last.
+  if (ds.running) {
+    kill(ds.pid, SIGTERM);
+    const auto t0 = Clock::now();
+    while (waitpid(ds.pid, nullptr, WNOHANG) != ds.pid) {
+      if (since(t0) > 3.0) {
+        kill(ds.pid, SIGKILL);
+        waitpid(ds.pid, nullptr, 0);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ds.running = false;
+  }
   comm::clean_stale_shm();
 
   // 4. Summary.
@@ -454,6 +544,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   summary["active_agents"] = plant.value("active_agents", nlohmann::json{{"L", act_L}, {"R", act_R}});
   summary["battery_discharge_mAh"] = plant.value("battery_discharge_mAh", nlohmann::json{{"L", 0}, {"R", 0}});
   summary["discovery_s"] = discovery_s;
+  summary["discovery_server_restarts"] = ds_restarts;
   summary["transport"] = transport;
   analyse_faults(failures, plant.value("membership_events", nlohmann::json::array()), o.run_dir + "/trace.csv",
                  sc.robot.wheel_radius_m);

@@ -160,9 +160,10 @@ void Scenario::validate() const {
     if (agent && idx >= robot.per_side())
       throw ScenarioError(src + ": " + fld + ".target = " + f.target + ": no such agent (" +
                           std::to_string(robot.per_side()) + " per side)");
-    if (!agent && f.target != "group-L" && f.target != "group-R" && f.target != "central" && f.target != "plant")
+    if (!agent && f.target != "group-L" && f.target != "group-R" && f.target != "central" && f.target != "plant" &&
+        f.target != "discovery")
       throw ScenarioError(src + ": " + fld + ".target = " + f.target +
-                          ": must be an agent (L0, R3, ...), group-L, group-R, central or plant");
+                          ": must be an agent (L0, R3, ...), group-L, group-R, central, plant or discovery");
     if (f.action != "kill" && f.action != "restart")
       throw ScenarioError(src + ": " + fld + ".action = " + f.action + ": must be kill or restart");
     need(f.at_s >= 0 && f.at_s <= duration_s, src, fld + ".at_s", f.at_s, "must be within [0, duration_s]");

@@ -108,6 +108,7 @@ TEST(Faults, KillingTheLauncherLeavesNoProcessBehind) {
   std::vector<pid_t> pids;
   for (const auto& p : fleet["processes"]) pids.push_back(p["pid"].get<int>());
   ASSERT_EQ(pids.size(), 20u);
+  pids.push_back(fleet["discovery_server_pid"].get<int>());  // the discovery server goes too
   for (pid_t p : pids) ASSERT_TRUE(process_running(p)) << p;
   kill(launcher, SIGKILL);
   waitpid(launcher, nullptr, 0);
@@ -119,6 +120,22 @@ TEST(Faults, KillingTheLauncherLeavesNoProcessBehind) {
       },
       10))
       << "a fleet process outlived its launcher";
+}
+
+TEST(Faults, KilledDiscoveryServerIsRestartedAndAnAgentStartedAfterwardsRejoins) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  auto r = run_cli(run_args(out, {"--duration", "20", "--kill", "discovery@3", "--kill", "L0@4", "--restart", "L0@5"}),
+                   out, 300);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.summary["status"], "ok");
+  EXPECT_EQ(r.summary["discovery_server_restarts"], 1);
+  // The restarted L0 can only be found through the restarted server.
+  const auto* e = event_of(r.summary, "L0", "rejoined");
+  ASSERT_NE(e, nullptr) << r.summary["plant"]["membership_events"].dump();
+  EXPECT_GT((*e)["t_s"].get<double>(), 5.0);
+  EXPECT_EQ(r.summary["plant"]["live_agents"]["L"], 8);
 }
 
 TEST(Faults, AnAgentStartedOutsideTheLauncherIsDetectedByLiveliness) {

@@ -1,6 +1,5 @@
-// Scale test (ctest label `scale`, left out of `deploy/maptr test`): a 64-agent fleet. With
-// 68 clients, the discovery server inside the launcher can hit a thread-safety assertion in
-// Fast DDS 2.9.1's statistics module (OutputTrafficManager); see BENCHMARKS.md.
+// Scale test (ctest label `scale`, part of `deploy/maptr test`): a 64-agent fleet, 68 processes
+// plus the discovery server, for 2 simulated seconds.
 #include <gtest/gtest.h>
 
 #include "tests/integration/fleet_runner.hpp"

@@ -1,0 +1,39 @@
+// maptr_discovery: the fleet's Fast DDS discovery server, a process of its own.
+//
+// The launcher starts it before any other process and ends it after the last one; if it dies
+// during a run, the launcher starts it again on the same address and the clients re-register
+// (their participants ping a server they lost until it answers). It carries metatraffic only.
+// Its transports are the fleet's: with UDP alone, Fast DDS 2.9.1's send statistics
+// (OutputTrafficManager) hit an assertion within seconds; with shared memory beside UDP that
+// has been rare.
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "comm/dds.hpp"
+#include "comm/process.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"MAPTR discovery server (started and stopped by `maptr run`)"};
+  maptr::comm::DdsOptions o = maptr::comm::options_from_env();
+  app.add_option("--address", o.discovery_server, "HOST:PORT to listen on (default: MAPTR_DISCOVERY_SERVER)");
+  app.add_option("--domain", o.domain, "DDS domain (default: MAPTR_DOMAIN)");
+  CLI11_PARSE(app, argc, argv);
+  if (o.discovery_server.empty()) {
+    std::fprintf(stderr, "maptr_discovery: no address: give --address HOST:PORT or set MAPTR_DISCOVERY_SERVER\n");
+    return 2;
+  }
+  o.is_server = true;  // transports as for the fleet (MAPTR_TRANSPORT)
+  auto& stop = maptr::comm::stop_flag();
+  try {
+    maptr::comm::Participant p("discovery", o);
+    std::fprintf(stderr, "maptr_discovery: serving domain %d on %s\n", o.domain, o.discovery_server.c_str());
+    while (!stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "maptr_discovery: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
