@@ -39,7 +39,16 @@ AgentOutput AgentCore::step(const AgentInput& in) {
   }
 
   if (assigned) {
-    if (!was_driving_) pid_.preload(c_.motor.back_emf_Vs * in.phidot_rad_s);  // bumpless: zero current
+    // Bumpless start. Every active agent of a side sees the same speed error, so differences in
+    // their integrators never decay: starting a newcomer at zero current (back-EMF) would leave
+    // it carrying less than the others for good, and the side would draw more than an even split
+    // (Joule losses grow with the square of the current). It starts at the side's level instead.
+    if (!was_driving_) {
+      if (in.side_active_V > 0.0 && has_prev_error_)
+        pid_.align(in.side_active_V, prev_error_);
+      else
+        pid_.preload(c_.motor.back_emf_Vs * in.phidot_rad_s);
+    }
     out.voltage_V = pid_.update(ref - in.phidot_rad_s, dt, in.battery_V);
     out.current_A = model::armature_current(c_.motor, out.voltage_V, in.phidot_rad_s);
     out.efficiency = model::efficiency(c_.motor, out.voltage_V, in.phidot_rad_s);
@@ -47,6 +56,8 @@ AgentOutput AgentCore::step(const AgentInput& in) {
     pid_.reset();
   }
   was_driving_ = assigned;
+  prev_error_ = ref - in.phidot_rad_s;  // followed while idle too, for align()
+  has_prev_error_ = true;
   return out;
 }
 

@@ -2,6 +2,11 @@
 // Agent logic for one wheel-motor pair (Level 1), free of DDS and clocks: it sees the tick
 // the plant published and returns the voltage to apply for [t_k, t_k+1].
 //   assigned active by its group -> PID on phidot_ref - phidot, clamped to [0, V_B]
+//   becoming active: the PID joins the side's running PIDs (Pid::align to the mean voltage
+//                                   they applied last tick): every agent of a side sees the
+//                                   same error, so agents that start level stay level and
+//                                   share the load evenly; with none active it starts at the
+//                                   back-EMF (zero current)
 //   not assigned                 -> open circuit (0 V, PID reset)
 //   group silent (its status older than one tick): hold the last assignment for group_hold_s,
 //                                   then coast (open circuit)
@@ -31,6 +36,7 @@ struct AgentInput {
   long long tick = 0;
   double phidot_rad_s = 0.0;     ///< its wheel's speed
   double battery_V = 0.0;        ///< its group's battery voltage
+  double side_active_V = 0.0;    ///< mean voltage its side's active agents applied last tick, 0 if none
   double phidot_ref_rad_s = 0.0; ///< reference in force
   long long central_stamp = -1;  ///< tick of the central command in force
   bool assigned = false;         ///< its bit in the group's active mask
@@ -56,6 +62,8 @@ class AgentCore {
   bool last_assigned_ = false;
   bool was_driving_ = false;
   double stop_ref_ = 0.0;  ///< reference while stopping, rad/s
+  double prev_error_ = 0.0;  ///< last tick's speed error, rad/s (tracked while idle too)
+  bool has_prev_error_ = false;
 };
 
 }  // namespace maptr::agent

@@ -31,6 +31,7 @@ int AgentNode::run() {
     in.tick = static_cast<long long>(t.tick());
     in.phidot_rad_s = side_ == 0 ? t.phidot_L() : t.phidot_R();
     in.battery_V = side_ == 0 ? t.battery_V_L() : t.battery_V_R();
+    in.side_active_V = side_ == 0 ? t.V_active_L() : t.V_active_R();
     in.phidot_ref_rad_s = side_ == 0 ? t.phidot_ref_L() : t.phidot_ref_R();
     in.central_stamp = t.central_stamp();
     in.group_stamp = side_ == 0 ? t.group_stamp_L() : t.group_stamp_R();

@@ -359,7 +359,13 @@ class Experiment {
   bool stopped() const { return interrupted_; }
   bool any_aborted() const { return any_aborted_; }
 
-  config::Scenario base() const { return config::load_scenario(o_.source_dir + "/deploy/scenarios/default.yaml"); }
+  double tick_hz() const { return o_.tick_hz > 0 ? o_.tick_hz : default_tick_hz(o_.name); }
+
+  config::Scenario base() const {
+    config::Scenario s = config::load_scenario(o_.source_dir + "/deploy/scenarios/default.yaml");
+    s.tick_hz = tick_hz();
+    return s;
+  }
 
   /// Straight line at `speed` for `duration` (and nothing else on the trajectory).
   static void straight(config::Scenario& s, double speed, double duration) {
@@ -483,7 +489,7 @@ class Experiment {
     std::ostringstream md;
     md << "# " << o_.name << (o_.quick ? " (quick)" : "") << "\n\n"
        << "Command: `" << command() << "`\n\n"
-       << md_intro << "\n\n"
+       << md_intro << " Level-1 control and plant tick: " << fixed(tick_hz(), 0) << " Hz.\n\n"
        << t.md() << "\n"
        << md_after << (md_after.empty() ? "" : "\n\n") << "Runs (each a whole fleet of processes):\n\n"
        << "| variant | status | simulated s | wall s | folder |\n|---|---|---|---|---|\n";
@@ -494,7 +500,8 @@ class Experiment {
          << fixed(r.summary.value("sim_time_s", 0.0), 1) << " | " << fixed(r.summary.value("wall_time_s", 0.0), 0)
          << " | runs/" << r.id << " |\n";
     std::ofstream(o_.out + "/" + o_.name + ".md") << md.str();
-    json s = {{"experiment", o_.name}, {"quick", o_.quick}, {"command", command()}, {"rows", t.rows}};
+    json s = {{"experiment", o_.name}, {"quick", o_.quick}, {"command", command()}, {"tick_hz", tick_hz()},
+              {"rows", t.rows}};
     for (auto& [k, v] : extra.items()) s[k] = v;
     json runs = json::array();
     for (const auto& r : runs_)
@@ -536,7 +543,8 @@ class Experiment {
   const std::vector<std::string>& plots() const { return plots_; }
 
   std::string command() const {
-    return "maptr experiment " + o_.name + (o_.quick ? " --quick" : "") + " --out " + o_.out;
+    return "maptr experiment " + o_.name + (o_.quick ? " --quick" : "") +
+           (o_.tick_hz > 0 ? " --tick-hz " + fixed(o_.tick_hz, 0) : "") + " --out " + o_.out;
   }
 
   int exit_code() const { return any_aborted_ ? 1 : 0; }
@@ -1253,6 +1261,10 @@ int exp_failures(Experiment& e) {
 }
 
 }  // namespace
+
+double default_tick_hz(const std::string& name) {
+  return name == "table-pow" || name == "failures" ? 100.0 : 20.0;
+}
 
 std::vector<std::string> experiment_names() {
   return {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures"};

@@ -13,7 +13,12 @@ struct ExperimentOptions {
   std::string bin_dir;       ///< where maptr_plant & co. are
   std::string source_dir;    ///< project source (deploy/scenarios/default.yaml)
   int domain = 0;            ///< DDS domain id for every run
+  double tick_hz = 0;        ///< Level-1 / plant tick rate; 0: the experiment's default
 };
+
+/// The tick rate an experiment runs at unless told otherwise: 100 Hz for table-pow and
+/// failures; 20 Hz for the long and large ones (see docs/RESULTS.md, "Tick rate").
+double default_tick_hz(const std::string& name);
 
 /// Names of the experiments, in the order `maptr experiment --help` lists them.
 std::vector<std::string> experiment_names();

@@ -46,6 +46,7 @@ struct RunArgs {
   std::string motor, mode, out;
   bool realtime = false, quiet = false;
   int domain = -1, trace_every = 0;
+  double tick_hz = 0;
   std::vector<std::string> kills, restarts, external;
   long long chaos = -1;
   std::string transport = "auto";
@@ -79,6 +80,7 @@ int cmd_run(const RunArgs& a, const char* argv0) {
     if (a.duration) s.duration_s = a.duration;
     if (a.realtime) s.realtime = true;
     if (a.trace_every) s.trace_every = a.trace_every;
+    if (a.tick_hz) s.tick_hz = a.tick_hz;
     if (a.speed >= 0)
       for (auto& seg : s.trajectory.segments)
         if (seg.type != "stop") seg.speed_mps = a.speed;
@@ -178,6 +180,7 @@ int main(int argc, char** argv) {
   run->add_option("--out", ra.out, "results folder (default runs/<date>-<scenario>)");
   run->add_option("--domain", ra.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
   run->add_option("--trace-every", ra.trace_every, "write every n-th tick to trace.csv");
+  run->add_option("--tick-hz", ra.tick_hz, "Level-1 control and plant tick rate, Hz (default: the scenario's, 100)");
   run->add_option("--kill", ra.kills, "kill a process at a simulated time, e.g. L3@120 (repeatable)");
   run->add_option("--restart", ra.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
   run->add_option("--chaos", ra.chaos, "random kills and restarts of agents and controllers, reproducible from SEED");
@@ -194,6 +197,8 @@ int main(int argc, char** argv) {
   expc->add_flag("--quick", eo.quick, "short variant (what the test suite runs)");
   expc->add_option("--out", eo.out, "output folder (default runs/<date>-experiment-<name>)");
   expc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
+  expc->add_option("--tick-hz", eo.tick_hz, "tick rate, Hz (default 100 for table-pow and failures, 20 for the others)")
+      ->check(CLI::Range(1.0, 10000.0));
   maptr::deploy::BenchOptions bo;
   std::string bench_agents;
   auto* benchc = app.add_subcommand("bench", "measure the distributed system: scale (N agents) or tick (latency)");
@@ -209,7 +214,13 @@ int main(int argc, char** argv) {
   auto* restartc = app.add_subcommand("restart", "start a killed process of a running fleet again");
   restartc->add_option("target", target, "process name")->required();
   restartc->add_option("--run", run_dir, "run folder (default: the newest running one under runs/)");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help prints and exits 0; any usage error (unknown option, a value outside its set)
+    // exits 2, like a bad scenario.
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   if (run->parsed()) return cmd_run(ra, argv[0]);
   if (expc->parsed()) {
     eo.bin_dir = bin_dir(argv[0]);

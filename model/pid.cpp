@@ -26,6 +26,13 @@ void Pid::reset() {
   saturated_ = false;
 }
 
+void Pid::align(double out, double prev_error) {
+  reset();
+  if (g_.ki > 0.0) integral_ = (out - g_.kp * prev_error) / g_.ki;
+  prev_error_ = prev_error;
+  first_ = false;
+}
+
 void Pid::preload(double out) {
   reset();
   if (g_.ki > 0.0) integral_ = out / g_.ki;

@@ -17,6 +17,11 @@ class Pid {
   void reset();
   /// Bumpless start: set the integral so that a zero error gives output_V.
   void preload(double output_V);
+  /// Join running controllers: take the state of a PID whose last step, at error e_prev, gave
+  /// output_V (integral (output_V - K_P e_prev) / K_I, previous error e_prev). Fed the same errors
+  /// from then on, this PID and that one give the same outputs (exactly for K_D = 0 and while
+  /// neither saturates).
+  void align(double output_V, double prev_error_rad_s);
   double integral() const { return integral_; }
   bool saturated() const { return saturated_; }
 

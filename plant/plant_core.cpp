@@ -68,6 +68,7 @@ void PlantCore::advance(const std::vector<AgentApplied>& left, const std::vector
       }
     }
   }
+  for (int s = 0; s < 2; ++s) active_V_[s] = sum[s].n ? sum[s].v / sum[s].n : 0.0;
   // Row k: state at t_k and what was applied over [t_k, t_k+1].
   if (tick_ % s_.trace_every == 0) {
     auto mean = [](double x, int n) { return n ? x / n : 0.0; };

@@ -34,6 +34,8 @@ class PlantCore {
   const model::State& state() const { return x_; }
   double battery_V(int side) const;
   double phidot(int side) const;
+  /// Mean voltage the active agents of a side applied over the last tick, V (0 if none).
+  double active_voltage(int side) const { return active_V_[side]; }
 
   /// Integrates [t_k, t_k+1] with the applied inputs, writes trace row k, advances k.
   /// ref_L/ref_R and live counts are recorded in the trace only.
@@ -63,6 +65,7 @@ class PlantCore {
   std::FILE* trace_ = nullptr;
   std::FILE* assignments_ = nullptr;
   std::vector<uint8_t> last_drive_[2];
+  double active_V_[2] = {0.0, 0.0};
   std::vector<double> active_time_[2];
   double below_since_ = -1.0;
   bool speed_lost_ = false;

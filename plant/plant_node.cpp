@@ -126,6 +126,8 @@ int PlantNode::run() {
     t.phidot_R(core.phidot(1));
     t.battery_V_L(core.battery_V(0));
     t.battery_V_R(core.battery_V(1));
+    t.V_active_L(core.active_voltage(0));
+    t.V_active_R(core.active_voltage(1));
     t.discharge_mAh_L(x[model::kChargeL]);
     t.discharge_mAh_R(x[model::kChargeR]);
     t.energy_J(x[model::kEnergyL] + x[model::kEnergyR]);

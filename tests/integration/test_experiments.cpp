@@ -1,0 +1,179 @@
+// Experiment tests (ctest label `experiments`): `maptr experiment NAME --quick` on real fleets,
+// and the trends of the paper that the results must show. Each test reads the experiment's
+// summary.json (its table as JSON) and the files it wrote.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "tests/integration/fleet_runner.hpp"
+
+using namespace maptr::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+CliResult run_experiment(const std::string& name, const std::string& out, double timeout_s) {
+  return run_cli({"experiment", name, "--quick", "--out", out, "--domain", std::to_string(private_domain())}, out,
+                 timeout_s);
+}
+
+double num(const nlohmann::json& row, const std::string& key) {
+  if (!row.contains(key) || !row[key].is_number()) return std::nan("");
+  return row[key].get<double>();
+}
+
+/// A PNG that gnuplot wrote from the experiment's CSV (the 8-byte PNG signature, some content).
+bool is_png(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char sig[8] = {0};
+  in.read(sig, 8);
+  return in && static_cast<unsigned char>(sig[0]) == 0x89 && sig[1] == 'P' && sig[2] == 'N' && sig[3] == 'G' &&
+         fs::file_size(path) > 2000;
+}
+
+/// The driving mask of one side in force at time t, from assignments.csv ("" if none).
+std::string mask_at(const std::string& assignments_csv, char side, double t) {
+  std::ifstream in(assignments_csv);
+  std::string line, mask;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    const auto c1 = line.find(','), c2 = line.find(',', c1 + 1);
+    if (c1 == std::string::npos || c2 == std::string::npos) continue;
+    if (std::stod(line.substr(0, c1)) > t) break;
+    if (line[c1 + 1] == side) mask = line.substr(c2 + 1);
+  }
+  return mask;
+}
+
+}  // namespace
+
+// table-pow --quick: 16 agents at 13.2 and 38.2 kg, 10 m/s, 60 s, NO and EC (four fleets).
+TEST(Experiments, TablePowQuickEcSavesEnergyAndTheSavingFallsWithWeight) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/table-pow";
+  const auto r = run_experiment("table-pow", out, 900);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto& rows = r.summary["rows"];
+  ASSERT_EQ(rows.size(), 2u) << r.summary.dump(2);
+  for (const auto& row : rows) {
+    EXPECT_EQ(row["status_NO"], "ok") << row.dump();
+    EXPECT_EQ(row["status_EC"], "ok") << row.dump();
+    EXPECT_TRUE(row["speed_held_NO"].get<bool>() && row["speed_held_EC"].get<bool>()) << row.dump();
+    // The point of the paper: the energy-conscious robot draws less energy over the same run.
+    EXPECT_LT(num(row, "E_EC_kJ"), num(row, "E_NO_kJ")) << "EC must save energy at " << row["gross_kg"] << " kg: "
+                                                         << row.dump();
+    // The paper's numbers are carried along for the two rows it has.
+    EXPECT_FALSE(row["E_NO_paper_kJ"].is_null());
+  }
+  const auto &light = rows[0], &heavy = rows[1];
+  ASSERT_LT(num(light, "gross_kg"), num(heavy, "gross_kg"));
+  // The saving falls as the load rises (more agents are needed near the efficient load).
+  EXPECT_GT(num(light, "saving_pct"), num(heavy, "saving_pct")) << light.dump() << "\n" << heavy.dump();
+  // The EC active count does not fall as the weight rises, and it rises strictly from 13.2 to 38.2 kg.
+  EXPECT_GT(num(heavy, "active_EC_end"), num(light, "active_EC_end")) << light.dump() << "\n" << heavy.dump();
+  EXPECT_LT(num(light, "active_EC_end"), 16) << "EC must leave agents idle at the light load";
+  // Outputs: the table in three forms and the plots made from the CSV.
+  for (const char* f : {"table-pow.csv", "table-pow.md", "summary.json", "table-pow-energy.gp"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  for (const char* f : {"table-pow-energy.png", "table-pow-saving.png", "table-pow-active.png"})
+    EXPECT_TRUE(is_png(out + "/" + f)) << f;
+  EXPECT_EQ(r.summary["runs"].size(), 4u);
+  for (const auto& run : r.summary["runs"]) EXPECT_TRUE(fs::exists(out + "/" + run["folder"].get<std::string>() + "/trace.csv"));
+}
+
+// wear --quick: EC at 13.2 kg, 10 m/s, 30 s, T_ON = 5 s, N = 8 and 16.
+//
+// Spread bound. Level 3 gives the N_a least-worn live agents the work at every reallocation,
+// and reallocations are at most T_ON apart (also on every change of N_a). All agents of a side
+// turn at the same speed, so between two reallocations every chosen agent gains the same
+// distance d <= v_max T_ON and the others gain 0. If max - min <= D before, and the chosen are
+// the least worn (max of chosen <= min of the others), then after the interval
+// max - min <= max(D, d): the chosen rise by d but start at or below the others' minimum. While
+// the robot accelerates every live agent drives (the spread does not change). So at any time
+// max - min of a side's wear <= v_max T_ON. v_max: the reference (10 m/s) plus the overshoot of
+// the speed loop after the step start (a few percent); X = 1.1 x 10 m/s x 5 s = 55 m. An
+// allocation that kept the same agents would let them run ~25 s of cruise ahead: ~250 m.
+TEST(Experiments, WearQuickIdleGrowsWithNAndLevel3SpreadsDistance) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/wear";
+  const auto r = run_experiment("wear", out, 600);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto& rows = r.summary["rows"];
+  ASSERT_EQ(rows.size(), 2u) << r.summary.dump(2);
+  const auto &n8 = rows[0], &n16 = rows[1];
+  ASSERT_EQ(n8["agents"], 8);
+  ASSERT_EQ(n16["agents"], 16);
+  // Idle time per agent grows with N at a fixed payload (paper, Fig. "average idle time").
+  EXPECT_GT(num(n16, "idle_mean_steps"), num(n8, "idle_mean_steps")) << n8.dump() << "\n" << n16.dump();
+  const double t_on = 5.0, speed = 10.0, bound = 1.1 * speed * t_on;
+  for (const auto& row : rows) {
+    EXPECT_EQ(row["status"], "ok") << row.dump();
+    const int per_side = row["agents"].get<int>() / 2;
+    for (const char* side : {"L", "R"}) {
+      const std::string s(side);
+      // Not trivial: some agents of the side were idle at the end.
+      EXPECT_LT(num(row, "active_end_" + s), per_side) << row.dump();
+      EXPECT_LE(num(row, "wear_spread_" + s + "_m"), bound) << "side " << s << ": " << row.dump();
+      // The work rotated: more agents drove during cruise than were active at the end.
+      EXPECT_GT(num(row, "drove_in_cruise_" + s), num(row, "active_end_" + s)) << row.dump();
+    }
+    // And every agent drove some distance (its ledger is not empty).
+    EXPECT_GT(num(row, "wear_min_m"), 0.0) << row.dump();
+  }
+  for (const char* f : {"wear.csv", "wear.md", "transitions-N8.csv", "transitions-N16.csv"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  for (const char* f : {"wear-idle.png", "wear-transitions-N8.png", "wear-transitions-N16.png"})
+    EXPECT_TRUE(is_png(out + "/" + f)) << f;
+}
+
+// failures --quick: 16 agents EC at 23.2 kg, 10 m/s, 30 s; 0 and 1 agent per side killed at 15 s.
+TEST(Experiments, FailuresQuickDetectsAndRecovers) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/failures";
+  const auto r = run_experiment("failures", out, 600);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto& rows = r.summary["rows"];
+  ASSERT_EQ(rows.size(), 2u) << r.summary.dump(2);
+  const auto &none = rows[0], &one = rows[1];
+  EXPECT_EQ(none["killed_per_side"], 0);
+  EXPECT_EQ(one["killed_per_side"], 1);
+  EXPECT_EQ(none["status"], "ok");
+  EXPECT_EQ(one["status"], "ok") << one.dump();
+  // The tolerance N_i - N_a,i was read from the fault-free run: at least one spare per side.
+  ASSERT_TRUE(r.summary["tolerance"].is_number());
+  EXPECT_GE(r.summary["tolerance"].get<int>(), 1);
+  // Both kills detected at once (the launcher sees its child die) and the speed recovered.
+  EXPECT_EQ(one["detected"], 2) << one.dump();
+  EXPECT_EQ(one["recovered"], 2) << one.dump();
+  EXPECT_LT(num(one, "detect_wall_ms_max"), 1000.0) << one.dump();
+  EXPECT_LT(num(one, "max_speed_error_pct"), 10.0) << one.dump();
+  EXPECT_NEAR(num(one, "final_speed_mps"), 10.0, 0.2) << one.dump();
+  EXPECT_EQ(one["live_end"]["L"], 7);
+  EXPECT_EQ(one["live_end"]["R"], 7);
+  // The killed agents were driving at that moment (the active ones die first): check against
+  // the fault-free run, which the faulty one repeats exactly up to the kill.
+  const std::string killed = one["killed"];
+  ASSERT_EQ(killed.size(), 5u) << killed;  // "Lj Rk"
+  const std::string a0 = out + "/runs/kill-0/assignments.csv";
+  for (const std::string& name : {killed.substr(0, 2), killed.substr(3, 2)}) {
+    const std::string mask = mask_at(a0, name[0], 15.0);
+    const int j = name[1] - '0';
+    ASSERT_LT(j, static_cast<int>(mask.size())) << name << " " << mask;
+    EXPECT_EQ(mask[j], '1') << name << " was not driving at 15 s: " << mask;
+  }
+  for (const char* f : {"failures-speed.png", "failures-energy.png"}) EXPECT_TRUE(is_png(out + "/" + f)) << f;
+}
+
+TEST(Experiments, UnknownNameExitsWith2AndListsTheExperiments) {
+  TempDir tmp;
+  const auto r = run_cli({"experiment", "no-such-experiment", "--out", tmp.path() + "/x"}, tmp.path() + "/x", 30);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  for (const char* n : {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures"})
+    EXPECT_NE(r.output.find(n), std::string::npos) << n << " missing from: " << r.output;
+}
