@@ -859,7 +859,8 @@ int exp_agents(Experiment& e) {
         << " s simulated (acceleration from rest included), Type-I motors. Payload series: the gross mass scaled with "
            "N (kg per agent: the same load per motor at every N)"
         << (q ? "." : ", and one fixed gross mass of 13.2 kg for every N (the same robot load spread over more motors).")
-        << " 128 agents are left out: the fleet does not complete DDS discovery at that size on a two-core machine yet.";
+        << " 128 agents are left out of this sweep for its run time: 8 fleets of 132 processes run at a real-time factor "
+           "well below 1 on two cores (see BENCHMARKS.md); `maptr run --agents 128` runs one.";
   e.write(t, intro.str(), "");
   std::string p = "plot ";
   for (std::size_t i = 0; i < series.size(); ++i)
