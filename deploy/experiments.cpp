@@ -1264,7 +1264,7 @@ int exp_failures(Experiment& e) {
 }  // namespace
 
 double default_tick_hz(const std::string& name) {
-  return name == "table-pow" || name == "failures" ? 100.0 : 20.0;
+  return name == "failures" ? 100.0 : 20.0;
 }
 
 std::vector<std::string> experiment_names() {

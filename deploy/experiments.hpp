@@ -16,8 +16,9 @@ struct ExperimentOptions {
   double tick_hz = 0;        ///< Level-1 / plant tick rate; 0: the experiment's default
 };
 
-/// The tick rate an experiment runs at unless told otherwise: 100 Hz for table-pow and
-/// failures; 20 Hz for the long and large ones (see docs/RESULTS.md, "Tick rate").
+/// The tick rate an experiment runs at unless told otherwise: 100 Hz (the scenario default) for
+/// failures, whose detection times are counted in ticks; 20 Hz for the long missions and large
+/// fleets (see docs/RESULTS.md, "Tick rate").
 double default_tick_hz(const std::string& name);
 
 /// Names of the experiments, in the order `maptr experiment --help` lists them.

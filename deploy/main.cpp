@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
   expc->add_flag("--quick", eo.quick, "short variant (what the test suite runs)");
   expc->add_option("--out", eo.out, "output folder (default runs/<date>-experiment-<name>)");
   expc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
-  expc->add_option("--tick-hz", eo.tick_hz, "tick rate, Hz (default 100 for table-pow and failures, 20 for the others)")
+  expc->add_option("--tick-hz", eo.tick_hz, "tick rate, Hz (default 100 for failures, 20 for the others)")
       ->check(CLI::Range(1.0, 10000.0));
   maptr::deploy::BenchOptions bo;
   std::string bench_agents;
