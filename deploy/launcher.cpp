@@ -134,6 +134,44 @@ void spawn(Child& c, const std::string& run_dir, const std::map<std::string, std
   ++c.starts;
 }
 
+/// Level-2 figures of a run from the groups' level2-<side>.csv: decisions, Ipopt solve time
+/// (median, p95, max) and, where the oracle ran on a solved problem, how often Ipopt's integer
+/// differed from the exhaustive search's.
+nlohmann::json level2_stats(const std::string& run_dir) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const char* side : {"L", "R"}) {
+    std::ifstream in(run_dir + "/level2-" + side + ".csv");
+    if (!in) continue;
+    std::string line;
+    std::getline(in, line);
+    std::vector<double> ms;
+    int checked = 0, differs = 0, infeasible = 0;
+    while (std::getline(in, line)) {
+      std::vector<double> f;
+      std::stringstream ss(line);
+      for (std::string c; std::getline(ss, c, ',');) f.push_back(std::atof(c.c_str()));
+      if (f.size() < 9) continue;
+      ms.push_back(f[8]);
+      if (static_cast<int>(f[3]) == msg::L2_INFEASIBLE) ++infeasible;
+      if (static_cast<int>(f[3]) == msg::L2_OK && f[6] >= 0) {
+        ++checked;
+        if (static_cast<int>(f[5]) != static_cast<int>(f[6])) ++differs;
+      }
+    }
+    nlohmann::json s = {{"decisions", ms.size()}, {"infeasible", infeasible},
+                        {"oracle_checked", checked}, {"oracle_differs", differs}};
+    if (!ms.empty()) {
+      std::sort(ms.begin(), ms.end());
+      auto q = [&](double p) { return ms[std::min(ms.size() - 1, static_cast<std::size_t>(p * (ms.size() - 1) + 0.5))]; };
+      s["solve_ms_median"] = q(0.5);
+      s["solve_ms_p95"] = q(0.95);
+      s["solve_ms_max"] = ms.back();
+    }
+    out[side] = s;
+  }
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
@@ -551,6 +589,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   summary["failures"] = failures;
   if (o.chaos_seed >= 0) summary["chaos_seed"] = o.chaos_seed;
   summary["plant"] = plant;
+  summary["level2"] = level2_stats(o.run_dir);
   nlohmann::json procs = nlohmann::json::array();
   for (const auto& c : kids)
     procs.push_back({{"name", c.name},

@@ -93,7 +93,8 @@ GroupDecision GroupCore::step(const GroupInput& in) {
   }
   ledger_.last_t = in.t;
 
-  GroupDecision d = last_;
+  GroupDecision d = last_;  // the last solve's diagnostics stay on the status topic
+  d.level2_ran = false;
   d.n_live = count(in.live);
   std::vector<uint8_t> next = ledger_.assignment;
   for (int j = 0; j < n; ++j)
@@ -133,6 +134,8 @@ GroupDecision GroupCore::step(const GroupInput& in) {
       if (p.live > 0) {
         const Level2Result r = solver_.solve(p);
         d.level2_relaxed = r.n_relaxed;
+        d.level2_ran = true;
+        d.ipopt_n_active = r.n_active;
         d.solve_time_ms = r.solve_time_ms;
         d.level2_status = !r.feasible ? kL2Infeasible : (r.ipopt_status >= 0 || r.ipopt_status == kLevel2NotSolved)
                                                             ? kL2Ok

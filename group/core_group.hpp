@@ -37,6 +37,8 @@ struct GroupDecision {
   double level2_relaxed = 0.0;
   int oracle_n_active = -1;
   double solve_time_ms = 0.0;
+  bool level2_ran = false;           ///< a Level-2 decision was taken at this tick
+  int ipopt_n_active = -1;           ///< the integer Ipopt's relaxed optimum led to (before feasibility)
   uint64_t decisions = 0, reallocations = 0;
 };
 

@@ -1,5 +1,7 @@
 #include "group/group_node.hpp"
 
+#include <fstream>
+
 #include "comm/follower.hpp"
 
 namespace maptr::group {
@@ -16,6 +18,12 @@ int GroupNode::run() {
   if (core_.resumed())
     log_->info("resumed the wear ledger: {} decisions, {} reallocations so far", core_.ledger().decisions,
                core_.ledger().reallocations);
+  // Every Level-2 decision, for the solve-time and oracle figures (appended: a restarted
+  // controller continues the file).
+  const std::string l2_path = args_.run_dir + "/level2-" + (side_ == 0 ? "L" : "R") + ".csv";
+  const bool l2_new = !std::ifstream(l2_path).good();
+  std::ofstream l2(l2_path, std::ios::app);
+  if (l2_new) l2 << "t_s,n_live,n_other,status,relaxed,ipopt_n_active,oracle_n_active,n_target,solve_ms\n";
   const int code = follower.run([&](const msg::PlantTick& t) {
     GroupInput in;
     in.tick = static_cast<long long>(t.tick());
@@ -30,6 +38,11 @@ int GroupNode::run() {
     in.active = side_ == 0 ? t.active_L() : t.active_R();
     in.n_other = side_ == 0 ? t.relay_count_L() : t.relay_count_R();
     const GroupDecision d = core_.step(in);
+    if (d.level2_ran && l2)
+      l2 << in.t << ',' << d.n_live << ',' << in.n_other << ',' << static_cast<int>(d.level2_status) << ','
+         << d.level2_relaxed << ',' << d.ipopt_n_active << ',' << d.oracle_n_active << ',' << d.n_active << ','
+         << d.solve_time_ms << '\n'
+         << std::flush;
     msg::GroupStatus st;
     st.tick(t.tick());
     st.side(static_cast<uint8_t>(side_));
