@@ -11,6 +11,8 @@
 
 #include "deploy/bench.hpp"
 #include "deploy/experiments.hpp"
+#include "model/level2.hpp"
+#include "model/motor.hpp"
 #include "deploy/faults.hpp"
 #include "deploy/launcher.hpp"
 #include "deploy/scenario.hpp"
@@ -146,6 +148,50 @@ std::string latest_live_run() {
   return best;
 }
 
+/// `maptr level2`: the Level-2 problem of one side in steady cruise, for every N_a: the
+/// objective, the voltage each active motor needs, its efficiency and the side's electrical
+/// power, and the exhaustive search's choice. The same model/ code the group controllers run.
+int cmd_level2(const RunArgs& a, double battery_V) {
+  Scenario s;
+  try {
+    s = maptr::config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
+    if (a.agents) s.robot.agents = a.agents;
+    if (a.gross_kg) s.robot.gross_mass_kg = a.gross_kg;
+    if (!a.motor.empty()) s.robot.motor = maptr::model::motor_type(a.motor);
+    s.validate();
+  } catch (const std::exception& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 2;
+  }
+  const double v = a.speed >= 0 ? a.speed : s.trajectory.segments.front().speed_mps;
+  maptr::model::Level2Problem p;
+  p.robot = s.robot;
+  p.live = s.robot.per_side();
+  p.v_x = v;
+  p.phidot_ref_L = p.phidot_ref_R = v / s.robot.wheel_radius_m;
+  p.battery_V = battery_V > 0 ? battery_V : s.robot.battery.y;
+  p.horizon = s.control.horizon;
+  p.step_s = s.control.horizon_step_s;
+  const double ph = p.phidot_ref_L;
+  std::printf("Level 2, one side in steady cruise: %d agents, %.1f kg, motor %s, %.2f m/s (%.1f rad/s), V_B %.2f V\n",
+              s.robot.agents, s.robot.gross_mass_kg, s.robot.motor.type.c_str(), v, ph, p.battery_V);
+  std::printf("%4s %10s %10s %9s %9s %12s  %s\n", "N_a", "J (of H)", "V need", "V need/VB", "eta", "P side W",
+              "feasible");
+  for (int n = 1; n <= p.live; ++n) {
+    p.n_other = n;
+    const double vn = maptr::model::required_voltage(p, n);
+    const double i = maptr::model::armature_current(s.robot.motor, vn, ph);
+    std::printf("%4d %10.4f %10.3f %9.3f %9.4f %12.2f  %s\n", n, maptr::model::horizon_efficiency(p, n), vn,
+                vn / p.battery_V, maptr::model::efficiency(s.robot.motor, vn, ph), n * vn * i,
+                maptr::model::level2_feasible(p, n) ? "yes" : "no (needs more than V_B)");
+  }
+  p.n_other = 0;
+  const auto c = maptr::model::exhaustive_level2(p);
+  std::printf("oracle: N_a = %d per side%s\n", c.n_active,
+              c.feasible ? "" : " (no N_a can hold the speed: every live agent runs)");
+  return 0;
+}
+
 int cmd_signal(const std::string& action, const std::string& target, std::string run_dir) {
   if (run_dir.empty()) run_dir = latest_live_run();
   if (run_dir.empty()) {
@@ -188,6 +234,15 @@ int main(int argc, char** argv) {
   run->add_option("--transport", ra.transport, "data transport: shm, udp or auto (shm up to 64 agents)")
       ->check(CLI::IsMember({"auto", "shm", "udp"}));
   run->add_flag("--quiet", ra.quiet, "no progress lines");
+  RunArgs la;
+  double l2_battery = 0;
+  auto* l2c = app.add_subcommand("level2", "the Level-2 problem of one side in steady cruise, for every N_a");
+  l2c->add_option("scenario", la.scenario, "scenario YAML (default: deploy/scenarios/default.yaml)");
+  l2c->add_option("--agents", la.agents, "number of agents N");
+  l2c->add_option("--gross-kg", la.gross_kg, "gross mass, kg");
+  l2c->add_option("--motor", la.motor, "motor type I or II");
+  l2c->add_option("--speed", la.speed, "cruise speed, m/s (default: the first segment's)");
+  l2c->add_option("--battery-v", l2_battery, "battery voltage, V (default: full, 23.4 V)");
   maptr::deploy::ExperimentOptions eo;
   int exp_domain = -1;
   auto* expc = app.add_subcommand("experiment", "run one of the paper's experiments on real fleets");
@@ -253,6 +308,7 @@ int main(int argc, char** argv) {
     bo.domain = exp_domain >= 0 ? exp_domain : (std::getenv("MAPTR_DOMAIN") ? std::atoi(std::getenv("MAPTR_DOMAIN")) : 0);
     return maptr::deploy::run_bench(bo);
   }
+  if (l2c->parsed()) return cmd_level2(la, l2_battery);
   if (killc->parsed()) return cmd_signal("kill", target, run_dir);
   if (restartc->parsed()) return cmd_signal("restart", target, run_dir);
   return 2;
