@@ -71,13 +71,19 @@ void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::s
   }
 }
 
+/// The scenario file (or the default one) with the robot options of the command line applied.
+Scenario load_robot(const RunArgs& a) {
+  Scenario s = maptr::config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
+  if (a.agents) s.robot.agents = a.agents;
+  if (a.gross_kg) s.robot.gross_mass_kg = a.gross_kg;
+  if (!a.motor.empty()) s.robot.motor = maptr::model::motor_type(a.motor);
+  return s;
+}
+
 int cmd_run(const RunArgs& a, const char* argv0) {
   Scenario s;
   try {
-    s = maptr::config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
-    if (a.agents) s.robot.agents = a.agents;
-    if (a.gross_kg) s.robot.gross_mass_kg = a.gross_kg;
-    if (!a.motor.empty()) s.robot.motor = maptr::model::motor_type(a.motor);
+    s = load_robot(a);
     if (!a.mode.empty()) s.mode = a.mode;
     if (a.duration) s.duration_s = a.duration;
     if (a.realtime) s.realtime = true;
@@ -154,10 +160,7 @@ std::string latest_live_run() {
 int cmd_level2(const RunArgs& a, double battery_V) {
   Scenario s;
   try {
-    s = maptr::config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
-    if (a.agents) s.robot.agents = a.agents;
-    if (a.gross_kg) s.robot.gross_mass_kg = a.gross_kg;
-    if (!a.motor.empty()) s.robot.motor = maptr::model::motor_type(a.motor);
+    s = load_robot(a);
     s.validate();
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
