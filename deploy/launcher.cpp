@@ -644,6 +644,23 @@ std::string human_summary(const nlohmann::json& s) {
                 s["processes"].size(), rss_max / 1024.0, s["processes"].empty() ? 0.0 : rss_sum / 1024.0 / s["processes"].size(),
                 s.value("trace_sha256", "").c_str());
   os << buf;
+  if (s.contains("level2") && s["level2"].is_object())
+    for (const auto& [side, l2] : s["level2"].items()) {
+      if (l2.value("decisions", 0) == 0) continue;
+      std::snprintf(buf, sizeof(buf), "level 2 %s   %d decisions, Ipopt median %.1f ms (max %.1f)%s%s\n", side.c_str(),
+                    l2.value("decisions", 0), l2.value("solve_ms_median", 0.0), l2.value("solve_ms_max", 0.0),
+                    l2.value("oracle_checked", 0) > 0
+                        ? (", oracle differed " + std::to_string(l2.value("oracle_differs", 0)) + " of " +
+                           std::to_string(l2.value("oracle_checked", 0)))
+                              .c_str()
+                        : "",
+                    l2.value("infeasible", 0) > 0
+                        ? (", infeasible " + std::to_string(l2.value("infeasible", 0)) +
+                           " times: the load needs more than the live agents give, all of them ran")
+                              .c_str()
+                        : "");
+      os << buf;
+    }
   return os.str();
 }
 

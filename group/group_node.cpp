@@ -24,6 +24,7 @@ int GroupNode::run() {
   const bool l2_new = !std::ifstream(l2_path).good();
   std::ofstream l2(l2_path, std::ios::app);
   if (l2_new) l2 << "t_s,n_live,n_other,status,relaxed,ipopt_n_active,oracle_n_active,n_target,solve_ms\n";
+  bool infeasible = false;
   const int code = follower.run([&](const msg::PlantTick& t) {
     GroupInput in;
     in.tick = static_cast<long long>(t.tick());
@@ -38,6 +39,14 @@ int GroupNode::run() {
     in.active = side_ == 0 ? t.active_L() : t.active_R();
     in.n_other = side_ == 0 ? t.relay_count_L() : t.relay_count_R();
     const GroupDecision d = core_.step(in);
+    if (d.level2_ran && (d.level2_status == msg::L2_INFEASIBLE) != infeasible) {
+      infeasible = !infeasible;
+      if (infeasible)
+        log_->warn("Level 2 infeasible at t={:.2f} s: {} live agents cannot hold the reference; all of them run",
+                   in.t, d.n_live);
+      else
+        log_->info("Level 2 feasible again at t={:.2f} s", in.t);
+    }
     if (d.level2_ran && l2)
       l2 << in.t << ',' << d.n_live << ',' << in.n_other << ',' << static_cast<int>(d.level2_status) << ','
          << d.level2_relaxed << ',' << d.ipopt_n_active << ',' << d.oracle_n_active << ',' << d.n_active << ','
