@@ -1089,7 +1089,7 @@ int exp_wear(Experiment& e) {
         row["wear_max_m"] = wmax;
       }
       // Greedy least-worn allocation at most T_ON apart: no agent gets more than one period's
-      // driving ahead of the least worn (see docs/RESULTS.md).
+      // driving ahead of the least worn (see docs/results/RESULTS.md).
       row["spread_bound_m"] = speed * t_on;
       row["active_mean"] = num(r.active_cruise);
       row["active_end"] = r.active_end();

@@ -18,7 +18,7 @@ struct ExperimentOptions {
 
 /// The tick rate an experiment runs at unless told otherwise: 100 Hz (the scenario default) for
 /// failures, whose detection times are counted in ticks; 20 Hz for the long missions and large
-/// fleets (see docs/RESULTS.md, "Tick rate").
+/// fleets (see docs/results/RESULTS.md, "Tick rate").
 double default_tick_hz(const std::string& name);
 
 /// Names of the experiments, in the order `maptr experiment --help` lists them.
