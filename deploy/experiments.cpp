@@ -1131,8 +1131,8 @@ int exp_wear(Experiment& e) {
                  ") font ',8'\nset cblabel 'fraction of the step spent driving'\nset cbrange [0:1]\n"
                  "set palette defined (0 'white', 1 'dark-blue')\nset xrange [-0.5:" + fixed(steps - 0.5, 1) +
                  "]\nset yrange [-0.5:" + fixed(n - 0.5, 1) + "]\nunset grid\nset key off\n"
-                 "plot 'transitions-N" + std::to_string(n) + ".csv' using \"step\":\"agent\":\"driving_fraction\" "
-                 "with image\n");
+                 // Columns by number: gnuplot 5.4 draws nothing "with image" when they are named.
+                 "plot 'transitions-N" + std::to_string(n) + ".csv' using 1:3:5 with image\n");
     }
     t.rows.push_back(row);
   }

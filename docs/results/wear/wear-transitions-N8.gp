@@ -16,4 +16,4 @@ set xrange [-0.5:17.5]
 set yrange [-0.5:7.5]
 unset grid
 set key off
-plot 'transitions-N8.csv' using "step":"agent":"driving_fraction" with image
+plot 'transitions-N8.csv' using 1:3:5 with image
