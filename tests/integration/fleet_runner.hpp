@@ -49,6 +49,16 @@ inline int private_domain() {
   return 100 + (static_cast<int>(getpid()) * 7 + counter++) % 120;
 }
 
+/// `maptr run EXTRA... --out OUT --domain <private> --quiet`.
+inline std::vector<std::string> run_args(const std::string& out, std::vector<std::string> extra) {
+  std::vector<std::string> a = {"run"};
+  a.insert(a.end(), extra.begin(), extra.end());
+  for (const std::string& s : {std::string("--out"), out, std::string("--domain"), std::to_string(private_domain()),
+                               std::string("--quiet")})
+    a.push_back(s);
+  return a;
+}
+
 inline CliResult run_cli(std::vector<std::string> args, const std::string& run_dir, double timeout_s) {
   CliResult r;
   r.run_dir = run_dir;

@@ -20,6 +20,14 @@ CliResult run_experiment(const std::string& name, const std::string& out, double
                  timeout_s);
 }
 
+/// Runs the quick variant into r and checks that it finished, exited 0 and wrote two rows.
+void run_quick(const std::string& name, const std::string& out, double timeout_s, CliResult& r) {
+  r = run_experiment(name, out, timeout_s);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(r.summary["rows"].size(), 2u) << r.summary.dump(2);
+}
+
 double num(const nlohmann::json& row, const std::string& key) {
   if (!row.contains(key) || !row[key].is_number()) return std::nan("");
   return row[key].get<double>();
@@ -54,11 +62,9 @@ std::string mask_at(const std::string& assignments_csv, char side, double t) {
 TEST(Experiments, TablePowQuickEcSavesEnergyAndTheSavingFallsWithWeight) {
   TempDir tmp;
   const std::string out = tmp.path() + "/table-pow";
-  const auto r = run_experiment("table-pow", out, 900);
-  ASSERT_FALSE(r.timed_out) << r.output;
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  CliResult r;
+  ASSERT_NO_FATAL_FAILURE(run_quick("table-pow", out, 900, r));
   const auto& rows = r.summary["rows"];
-  ASSERT_EQ(rows.size(), 2u) << r.summary.dump(2);
   for (const auto& row : rows) {
     EXPECT_EQ(row["status_NO"], "ok") << row.dump();
     EXPECT_EQ(row["status_EC"], "ok") << row.dump();
@@ -100,11 +106,9 @@ TEST(Experiments, TablePowQuickEcSavesEnergyAndTheSavingFallsWithWeight) {
 TEST(Experiments, WearQuickIdleGrowsWithNAndLevel3SpreadsDistance) {
   TempDir tmp;
   const std::string out = tmp.path() + "/wear";
-  const auto r = run_experiment("wear", out, 600);
-  ASSERT_FALSE(r.timed_out) << r.output;
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  CliResult r;
+  ASSERT_NO_FATAL_FAILURE(run_quick("wear", out, 600, r));
   const auto& rows = r.summary["rows"];
-  ASSERT_EQ(rows.size(), 2u) << r.summary.dump(2);
   const auto &n8 = rows[0], &n16 = rows[1];
   ASSERT_EQ(n8["agents"], 8);
   ASSERT_EQ(n16["agents"], 16);
@@ -135,11 +139,9 @@ TEST(Experiments, WearQuickIdleGrowsWithNAndLevel3SpreadsDistance) {
 TEST(Experiments, FailuresQuickDetectsAndRecovers) {
   TempDir tmp;
   const std::string out = tmp.path() + "/failures";
-  const auto r = run_experiment("failures", out, 600);
-  ASSERT_FALSE(r.timed_out) << r.output;
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  CliResult r;
+  ASSERT_NO_FATAL_FAILURE(run_quick("failures", out, 600, r));
   const auto& rows = r.summary["rows"];
-  ASSERT_EQ(rows.size(), 2u) << r.summary.dump(2);
   const auto &none = rows[0], &one = rows[1];
   EXPECT_EQ(none["killed_per_side"], 0);
   EXPECT_EQ(one["killed_per_side"], 1);

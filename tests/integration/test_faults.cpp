@@ -12,14 +12,6 @@ using namespace maptr::testing;
 
 namespace {
 
-std::vector<std::string> run_args(const std::string& out, std::vector<std::string> extra) {
-  std::vector<std::string> a = {"run"};
-  a.insert(a.end(), extra.begin(), extra.end());
-  for (const std::string& s : {std::string("--out"), out, std::string("--domain"), std::to_string(private_domain()),
-                               std::string("--quiet")})
-    a.push_back(s);
-  return a;
-}
 
 const nlohmann::json* event_of(const nlohmann::json& s, const std::string& name, const std::string& what) {
   for (const auto& e : s["plant"]["membership_events"])

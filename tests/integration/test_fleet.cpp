@@ -7,21 +7,12 @@
 
 #include "tests/integration/fleet_runner.hpp"
 
-using maptr::testing::private_domain;
+using maptr::testing::run_args;
 using maptr::testing::run_cli;
 using maptr::testing::TempDir;
 using maptr::testing::write_file;
 
 namespace {
-
-std::vector<std::string> base(const std::string& out, std::vector<std::string> extra) {
-  std::vector<std::string> a = {"run"};
-  a.insert(a.end(), extra.begin(), extra.end());
-  for (const std::string& s : {std::string("--out"), out, std::string("--domain"), std::to_string(private_domain()),
-                               std::string("--quiet")})
-    a.push_back(s);
-  return a;
-}
 
 void expect_clean_exit(const nlohmann::json& s, std::size_t processes) {
   ASSERT_EQ(s["processes"].size(), processes);
@@ -37,7 +28,7 @@ void expect_clean_exit(const nlohmann::json& s, std::size_t processes) {
 TEST(Fleet, Default16AgentsReachTheReferenceSpeed) {
   TempDir tmp;
   const std::string out = tmp.path() + "/run";
-  auto r = run_cli(base(out, {"--duration", "10"}), out, 180);
+  auto r = run_cli(run_args(out, {"--duration", "10"}), out, 180);
   ASSERT_FALSE(r.timed_out) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto& s = r.summary;
@@ -67,7 +58,7 @@ TEST(Fleet, SameRunTwiceGivesTheSameTrace) {
   std::string sha[2];
   for (int i = 0; i < 2; ++i) {
     const std::string out = tmp.path() + "/run" + std::to_string(i);
-    auto r = run_cli(base(out, {"--duration", "4"}), out, 120);
+    auto r = run_cli(run_args(out, {"--duration", "4"}), out, 120);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     sha[i] = r.summary["trace_sha256"];
   }
@@ -79,7 +70,7 @@ TEST(Fleet, FourAndThirtyTwoAgents) {
   for (int n : {4, 32}) {
     TempDir tmp;
     const std::string out = tmp.path() + "/run";
-    auto r = run_cli(base(out, {"--agents", std::to_string(n), "--duration", "3", "--mode", "all"}), out, 240);
+    auto r = run_cli(run_args(out, {"--agents", std::to_string(n), "--duration", "3", "--mode", "all"}), out, 240);
     ASSERT_FALSE(r.timed_out) << r.output;
     ASSERT_EQ(r.exit_code, 0) << "N=" << n << "\n" << r.output;
     EXPECT_EQ(r.summary["agents"], n);
@@ -101,7 +92,7 @@ TEST(Fleet, ArcEndsAtThePoseTheKinematicsPredict) {
              "    - {type: straight, speed_mps: 5, duration_s: 6}\n"
              "    - {type: arc, speed_mps: 5, radius_m: 500, duration_s: 24}\n");
   const std::string out = tmp.path() + "/run";
-  auto r = run_cli(base(out, {scen}), out, 180);
+  auto r = run_cli(run_args(out, {scen}), out, 180);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // Dead-reckon the pose from the wheel speeds in the trace with the kinematics
   // (v = r (phidot_L + phidot_R)/2, w = r (phidot_R - phidot_L)/a), trapezoid rule.
@@ -158,7 +149,7 @@ TEST(Fleet, BadScenariosAreRefusedBeforeAnyProcessStarts) {
     const std::string scen = tmp.path() + "/bad" + std::to_string(i++) + ".yaml";
     write_file(scen, c.yaml);
     const std::string out = tmp.path() + "/run" + std::to_string(i);
-    auto r = run_cli(base(out, {scen}), out, 30);
+    auto r = run_cli(run_args(out, {scen}), out, 30);
     EXPECT_EQ(r.exit_code, 2) << c.yaml << r.output;
     EXPECT_NE(r.output.find(scen), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(c.field), std::string::npos) << r.output;

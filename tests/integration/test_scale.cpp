@@ -4,25 +4,14 @@
 
 #include "tests/integration/fleet_runner.hpp"
 
-using maptr::testing::private_domain;
+using maptr::testing::run_args;
 using maptr::testing::run_cli;
 using maptr::testing::TempDir;
-
-namespace {
-std::vector<std::string> base(const std::string& out, std::vector<std::string> extra) {
-  std::vector<std::string> a = {"run"};
-  a.insert(a.end(), extra.begin(), extra.end());
-  for (const std::string& s : {std::string("--out"), out, std::string("--domain"), std::to_string(private_domain()),
-                               std::string("--quiet")})
-    a.push_back(s);
-  return a;
-}
-}  // namespace
 
 TEST(Fleet, SixtyFourAgentProcessesJoinAndFinish) {
   TempDir tmp;
   const std::string out = tmp.path() + "/run";
-  auto r = run_cli(base(out, {"--agents", "64", "--duration", "2"}), out, 400);
+  auto r = run_cli(run_args(out, {"--agents", "64", "--duration", "2"}), out, 400);
   ASSERT_FALSE(r.timed_out) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.summary["status"], "ok");
