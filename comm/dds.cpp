@@ -1,5 +1,7 @@
 #include "comm/dds.hpp"
 
+#include "comm/shm_files.hpp"
+
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
@@ -182,7 +184,9 @@ DdsOptions options_from_env() {
   return o;
 }
 
-int clean_stale_shm() {
+namespace {
+
+int run_fastdds_shm_clean() {
   // `fastdds shm clean` (fastdds-tools) removes the segments and ports whose owner is gone;
   // segments of live processes are kept.
   const pid_t pid = fork();
@@ -206,6 +210,14 @@ int clean_stale_shm() {
   kill(pid, SIGKILL);
   waitpid(pid, &status, 0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+int clean_stale_shm() {
+  run_fastdds_shm_clean();
+  // Then the port files `fastdds shm clean` leaves (see comm/shm_files.hpp).
+  return remove_unused_shm_ports().ports_removed;
 }
 
 }  // namespace maptr::comm

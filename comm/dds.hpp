@@ -189,8 +189,9 @@ class Participant {
 /// sets them for its children); explicit command-line values override them.
 DdsOptions options_from_env();
 
-/// Removes Fast DDS shared-memory files in /dev/shm that no live process holds any more
-/// (as `fastdds shm clean` does). Returns how many were removed.
+/// Removes Fast DDS shared-memory files in /dev/shm that no live process holds any more:
+/// `fastdds shm clean` for segments, then the unused port files it leaves
+/// (remove_unused_shm_ports). Returns how many port groups were removed.
 int clean_stale_shm();
 
 }  // namespace maptr::comm

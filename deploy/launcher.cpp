@@ -182,6 +182,10 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   std::ofstream(cfg) << config::to_yaml(sc);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  // Shared-memory ports that earlier fleets left behind on this machine (same domain, same
+  // port numbers) can keep this fleet from discovering itself.
+  if (const int stale = comm::clean_stale_shm(); stale > 0)
+    log.info("removed {} unused Fast DDS shared-memory ports left in /dev/shm by earlier runs", stale);
 
   // A discovery server of the fleet's own (participant id 0), started first and ended last:
   // clients find only what they need through it. The launcher is a client too (id 1).
@@ -543,7 +547,8 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     }
     ds.running = false;
   }
-  comm::clean_stale_shm();
+  if (const int stale = comm::clean_stale_shm(); stale > 0)
+    log.info("removed {} unused Fast DDS shared-memory ports in /dev/shm", stale);
 
   // 4. Summary.
   nlohmann::json plant;

@@ -1,0 +1,29 @@
+#pragma once
+// Stale Fast DDS shared-memory port files. Pure POSIX (no DDS), so it can be tested on its own.
+//
+// Fast DDS keeps one shared-memory "port" per locator: `fastrtps_port<N>` (the ring buffer),
+// `fastrtps_port<N>_el` (its lock file) and `sem.fastrtps_port<N>_mutex` (its named mutex).
+// Ports are created by whichever participant first opens them, also by a sender to a port
+// nobody listens on, and `fastdds shm clean` (2.9) does not count such ports as zombies, so
+// every fleet leaves some behind. On one domain the same port numbers come back at every run:
+// hundreds of leftovers were seen to make a later fleet's discovery fail.
+#include <string>
+
+namespace maptr::comm {
+
+struct ShmSweep {
+  int ports_removed = 0;    ///< port groups removed (each up to three files)
+  int ports_in_use = 0;     ///< port groups kept: a process maps one of their files or locks its `_el`
+  int ports_too_young = 0;  ///< port groups kept: a file was modified less than min_age_s ago
+  int unreadable_processes = 0;  ///< processes whose /proc/PID/maps this user may not read
+};
+
+/// Removes the port groups in `dir` (normally /dev/shm) that belong to this user, that no
+/// process maps, whose `_el` lock no process holds (the test `fastdds shm clean` makes; ports
+/// that only senders opened have no `_el`, which is why it leaves them), and whose files were
+/// not modified for `min_age_s` seconds (a port just being created is not mapped yet).
+/// Processes whose maps this user may not read (another user's, or the container's init) are
+/// not Fast DDS participants of this user, whose maps are always readable; they are counted.
+ShmSweep remove_unused_shm_ports(const std::string& dir = "/dev/shm", double min_age_s = 10.0);
+
+}  // namespace maptr::comm
