@@ -220,4 +220,10 @@ int clean_stale_shm() {
   return remove_unused_shm_ports().ports_removed;
 }
 
+int clean_fleet_shm(int domain, int max_participant_id, int extra_port) {
+  std::set<int> ports = rtps_ports(domain, max_participant_id);
+  if (extra_port > 0) ports.insert(extra_port);
+  return remove_unused_shm_ports("/dev/shm", 0.0, &ports).ports_removed;
+}
+
 }  // namespace maptr::comm

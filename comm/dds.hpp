@@ -194,4 +194,9 @@ DdsOptions options_from_env();
 /// (remove_unused_shm_ports). Returns how many port groups were removed.
 int clean_stale_shm();
 
+/// After a fleet has ended: removes the shared-memory ports of `domain` for participant ids
+/// 0..max_participant_id (and `extra_port`, e.g. the discovery server's) that no process maps
+/// or locks any more, however young (see comm/shm_files.hpp). Returns how many were removed.
+int clean_fleet_shm(int domain, int max_participant_id, int extra_port = -1);
+
 }  // namespace maptr::comm

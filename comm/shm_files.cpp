@@ -74,13 +74,25 @@ std::string port_of(const std::string& name) {
 
 }  // namespace
 
-ShmSweep remove_unused_shm_ports(const std::string& dir, double min_age_s) {
+std::set<int> rtps_ports(int domain, int max_participant_id) {
+  const int base = 7400 + 250 * domain;
+  std::set<int> ports = {base, base + 1};
+  for (int id = 0; id <= max_participant_id; ++id) {
+    ports.insert(base + 10 + 2 * id);
+    ports.insert(base + 11 + 2 * id);
+  }
+  return ports;
+}
+
+ShmSweep remove_unused_shm_ports(const std::string& dir, double min_age_s, const std::set<int>* only) {
   ShmSweep r;
   std::map<std::string, std::vector<fs::path>> ports;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string p = port_of(e.path().filename().string());
-    if (!p.empty()) ports[p].push_back(e.path());
+    if (p.empty() || p.size() > 9) continue;
+    if (only && !only->count(std::stoi(p))) continue;
+    ports[p].push_back(e.path());
   }
   if (ports.empty()) return r;
   std::set<std::string> mapped;

@@ -7,6 +7,7 @@
 // nobody listens on, and `fastdds shm clean` (2.9) does not count such ports as zombies, so
 // every fleet leaves some behind. On one domain the same port numbers come back at every run:
 // hundreds of leftovers were seen to make a later fleet's discovery fail.
+#include <set>
 #include <string>
 
 namespace maptr::comm {
@@ -24,6 +25,14 @@ struct ShmSweep {
 /// not modified for `min_age_s` seconds (a port just being created is not mapped yet).
 /// Processes whose maps this user may not read (another user's, or the container's init) are
 /// not Fast DDS participants of this user, whose maps are always readable; they are counted.
-ShmSweep remove_unused_shm_ports(const std::string& dir = "/dev/shm", double min_age_s = 10.0);
+/// `only`: if given, only these port numbers are considered (a fleet removing its own ports).
+ShmSweep remove_unused_shm_ports(const std::string& dir = "/dev/shm", double min_age_s = 10.0,
+                                 const std::set<int>* only = nullptr);
+
+/// The port numbers Fast DDS uses on `domain` for participant ids 0..max_participant_id, by the
+/// RTPS well-known port mapping (PB 7400, DG 250, PG 2; d0 0, d1 10, d2 1, d3 11): the two
+/// multicast ports of the domain, and for each id its metatraffic and user unicast ports.
+/// Fast DDS names its shared-memory ports after the same numbers.
+std::set<int> rtps_ports(int domain, int max_participant_id);
 
 }  // namespace maptr::comm

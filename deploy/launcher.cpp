@@ -216,10 +216,12 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   ds.args = {"--address", dds.discovery_server, "--domain", std::to_string(o.domain)};
   if (!fs::exists(ds.binary)) throw std::runtime_error("missing process binary " + ds.binary);
   int ds_restarts = 0;
+  int max_participant_id = 1;  ///< highest id given to a process of this fleet (ports to clean up)
   std::optional<Clock::time_point> ds_restart_at;
   // Starts the server (again) and waits until it listens.
   auto start_discovery = [&]() -> bool {
     spawn(ds, o.run_dir, env, ds_restarts * id_stride);  // fresh ports after a restart
+    max_participant_id = std::max(max_participant_id, ds_restarts * id_stride);
     const auto t0 = Clock::now();
     while (std::chrono::duration<double>(Clock::now() - t0).count() < 10.0) {
       if (udp_port_bound(ds_port)) return true;
@@ -271,7 +273,11 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       add(n, "maptr_agent", {"--id", n}, msg::NODE_AGENT, static_cast<uint8_t>(s), static_cast<uint16_t>(j));
     }
   for (std::size_t i = 0; i < kids.size(); ++i) kids[i].base_id = static_cast<int>(i) + 2;
-  auto spawn_kid = [&](Child& c) { spawn(c, o.run_dir, env, c.base_id + c.starts * id_stride); };
+  auto spawn_kid = [&](Child& c) {
+    const int id = c.base_id + c.starts * id_stride;
+    max_participant_id = std::max(max_participant_id, id);
+    spawn(c, o.run_dir, env, id);
+  };
   for (const auto& c : kids)
     if (!fs::exists(c.binary)) throw std::runtime_error("missing process binary " + c.binary);
 
@@ -547,6 +553,10 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     }
     ds.running = false;
   }
+  // Every process of the fleet has ended: its ports go now (clean_fleet_shm), then whatever
+  // older runs left (clean_stale_shm).
+  if (const int own = comm::clean_fleet_shm(o.domain, max_participant_id + 1, ds_port); own > 0)
+    log.info("removed {} Fast DDS shared-memory ports of this fleet from /dev/shm", own);
   if (const int stale = comm::clean_stale_shm(); stale > 0)
     log.info("removed {} unused Fast DDS shared-memory ports in /dev/shm", stale);
 

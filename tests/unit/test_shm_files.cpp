@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <sys/file.h>
 #include <sys/mman.h>
@@ -125,4 +126,26 @@ TEST_F(ShmFiles, APortWhoseLockFileIsHeldStays) {
   waitpid(child, nullptr, 0);
   EXPECT_EQ(remove_unused_shm_ports(dir.string(), 10.0).ports_removed, 1);
   EXPECT_FALSE(has_port_files(7419));
+}
+
+TEST(RtpsPorts, FollowTheWellKnownPortMapping) {
+  // RTPS 2.x, section 9.6.1.1: PB + DG * domain + d_ + PG * participant_id.
+  const auto p0 = maptr::comm::rtps_ports(0, 0);
+  EXPECT_EQ(p0, (std::set<int>{7400, 7401, 7410, 7411}));
+  const auto p = maptr::comm::rtps_ports(159, 4);
+  EXPECT_EQ(p.size(), 2u + 2u * 5u);
+  EXPECT_TRUE(p.count(7400 + 250 * 159));          // metatraffic multicast
+  EXPECT_TRUE(p.count(7400 + 250 * 159 + 18));     // id 4, metatraffic unicast
+  EXPECT_TRUE(p.count(7400 + 250 * 159 + 19));     // id 4, user unicast
+  EXPECT_FALSE(p.count(7400 + 250 * 159 + 20));    // id 5: not asked for
+}
+
+TEST_F(ShmFiles, AFleetRemovesOnlyItsOwnPortsButAtAnyAge) {
+  make_port(47168, 0);  // this fleet's, just released
+  make_port(47418, 0);  // another domain's, just as young
+  const std::set<int> mine = maptr::comm::rtps_ports(159, 4);
+  const auto r = remove_unused_shm_ports(dir.string(), 0.0, &mine);
+  EXPECT_EQ(r.ports_removed, 1);
+  EXPECT_FALSE(has_port_files(47168));
+  EXPECT_TRUE(has_port_files(47418));
 }
