@@ -93,27 +93,38 @@ std::shared_ptr<spdlog::logger> file_logger(const std::string& dir) {
 
 void plot(const std::string& dir) {
   const std::string gp = dir + "/scale.gp";
-  std::ofstream(gp) << "set terminal pngcairo size 1100,800\n"
-                       "set output '" << dir << "/scale.png'\n"
+  // Relative paths: the script runs in the output folder (`cd DIR && gnuplot scale.gp`).
+  std::ofstream(gp) << "# made by `maptr bench scale`; redraw with `maptr bench scale --replot --out DIR`\n"
+                       "set terminal pngcairo size 1100,800 noenhanced\n"
+                       "set output 'scale.png'\n"
                        "set datafile separator ','\n"
                        "set key autotitle columnhead\n"
                        "set multiplot layout 2,2 title 'MAPTR scale-up on this machine (lock-step, EC mode)'\n"
                        "set logscale x 2\nset grid\nset xlabel 'agent processes N'\n"
                        "set ylabel 'seconds'\nset title 'launch to all matched'\n"
-                       "plot '" << dir << "/scale.csv' using 1:3 with linespoints title 'discovery_s'\n"
-                       "set ylabel 'simulated s per wall s'\nset title 'real-time factor at 100 Hz'\n"
-                       "plot '" << dir << "/scale.csv' using 1:5 with linespoints title 'RTF', 1 with lines dt 2 title 'real time'\n"
-                       "set ylabel 'CPU s per simulated s'\nset title 'CPU cost'\n"
-                       "plot '" << dir << "/scale.csv' using 1:6 with linespoints title 'all processes'\n"
-                       "set ylabel 'MB'\nset title 'proportional memory (PSS) per agent process'\n"
-                       "plot '" << dir << "/scale.csv' using 1:($7/1024) with linespoints title 'median', "
+                       "plot 'scale.csv' using 1:3 with linespoints title 'all processes matched'\n"
+                       "set ylabel 'simulated s per wall s'\nset title 'real-time factor at 100 Hz (log scale)'\nset logscale y\n"
+                       "plot 'scale.csv' using 1:5 with linespoints title 'RTF', 1 with lines dt 2 title 'real time'\n"
+                       "set ylabel 'CPU s per simulated s'\nset title 'CPU cost (log scale)'\n"
+                       "plot 'scale.csv' using 1:6 with linespoints title 'all processes'\n"
+                       "unset logscale y\nset ylabel 'MB'\nset title 'proportional memory (PSS) per agent process'\nset yrange [0:14]\n"
+                       "plot 'scale.csv' using 1:($7/1024) with linespoints title 'median', "
                        "'' using 1:($8/1024) with linespoints title 'max', 12 with lines dt 2 title 'target 12 MB'\n"
                        "unset multiplot\n";
-  const std::string cmd = "gnuplot '" + gp + "' 2>/dev/null";
+  const std::string cmd = "cd '" + dir + "' && gnuplot scale.gp 2>/dev/null";
   if (std::system(cmd.c_str()) != 0) std::cerr << "maptr: gnuplot failed; the CSV and markdown are written\n";
 }
 
 int bench_scale(const BenchOptions& o) {
+  if (o.replot) {
+    if (!fs::exists(o.out + "/scale.csv")) {
+      std::cerr << "maptr: bench scale --replot: no " << o.out << "/scale.csv\n";
+      return 2;
+    }
+    plot(o.out);
+    std::cerr << "maptr: redrew " << o.out << "/scale.png\n";
+    return 0;
+  }
   fs::create_directories(o.out);
   std::ofstream csv(o.out + "/scale.csv");
   csv << "agents,status,discovery_s,ticks_per_wall_s,real_time_factor,cpu_s_per_sim_s,pss_agent_median_kB,"

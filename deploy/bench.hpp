@@ -12,6 +12,7 @@ struct BenchOptions {
   std::string out;                  ///< output folder
   std::string bin_dir, source_dir;
   int domain = 0;
+  bool replot = false;              ///< scale: redraw scale.png from OUT/scale.csv, run nothing
 };
 
 int run_bench(const BenchOptions& o);

@@ -265,6 +265,7 @@ int main(int argc, char** argv) {
   benchc->add_option("--duration", bo.duration_s, "simulated seconds per run")->check(CLI::PositiveNumber);
   benchc->add_option("--out", bo.out, "output folder (default runs/<date>-bench-<what>)");
   benchc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
+  benchc->add_flag("--replot", bo.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
   std::string target, run_dir;
   auto* killc = app.add_subcommand("kill", "SIGKILL a process of a running fleet (e.g. L3, group-R, central)");
   killc->add_option("target", target, "process name")->required();
