@@ -174,6 +174,15 @@ nlohmann::json level2_stats(const std::string& run_dir) {
 
 }  // namespace
 
+std::string domain_problem(int domain, int agents) {
+  const int participants = 2 + 4 + agents;  // discovery server, launcher, plant, central, 2 groups, agents
+  const int top_port = 7400 + 250 * domain + 11 + 2 * (participants - 1);
+  if (domain >= 0 && top_port <= 65535) return "";
+  return "--domain " + std::to_string(domain) + ": a fleet of " + std::to_string(agents) + " agents has " +
+         std::to_string(participants) + " DDS participants, whose ports would go up to " + std::to_string(top_port) +
+         ", above 65535; use a domain from 0 to " + std::to_string((65535 - 7411 - 2 * (participants - 1)) / 250);
+}
+
 nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   const config::Scenario& sc = o.scenario;
   namespace fs = std::filesystem;
@@ -210,6 +219,15 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   // groups, agents). A fresh id (and so fresh ports) at every start: a restarted process never
   // reuses the shared-memory ports its killed predecessor left behind.
   const int id_stride = 2 + 4 + sc.robot.agents;
+  // Fast DDS derives each participant's ports from its id (RTPS mapping: 7400 + 250 domain +
+  // 10/11 + 2 id), so ids above about 120 use the port range of the next domains, which is
+  // fine as long as the ports stay below 65536. Restarts cycle through as many id windows as
+  // fit; the oldest window's ports belong to processes that are long gone.
+  const int port_base = 7400 + 250 * o.domain;
+  const int max_fitting_id = (65535 - port_base - 11) / 2;
+  const int id_windows = (max_fitting_id + 1) / id_stride;
+  if (id_windows < 1) throw std::runtime_error(domain_problem(o.domain, sc.robot.agents));
+  auto participant_id = [&](int base, int starts) { return base + (starts % id_windows) * id_stride; };
   Child ds;
   ds.name = "discovery";
   ds.binary = o.bin_dir + "/maptr_discovery";
@@ -220,8 +238,9 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   std::optional<Clock::time_point> ds_restart_at;
   // Starts the server (again) and waits until it listens.
   auto start_discovery = [&]() -> bool {
-    spawn(ds, o.run_dir, env, ds_restarts * id_stride);  // fresh ports after a restart
-    max_participant_id = std::max(max_participant_id, ds_restarts * id_stride);
+    const int id = participant_id(0, ds_restarts);  // fresh ports after a restart
+    max_participant_id = std::max(max_participant_id, id);
+    spawn(ds, o.run_dir, env, id);
     const auto t0 = Clock::now();
     while (std::chrono::duration<double>(Clock::now() - t0).count() < 10.0) {
       if (udp_port_bound(ds_port)) return true;
@@ -274,7 +293,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     }
   for (std::size_t i = 0; i < kids.size(); ++i) kids[i].base_id = static_cast<int>(i) + 2;
   auto spawn_kid = [&](Child& c) {
-    const int id = c.base_id + c.starts * id_stride;
+    const int id = participant_id(c.base_id, c.starts);
     max_participant_id = std::max(max_participant_id, id);
     spawn(c, o.run_dir, env, id);
   };

@@ -37,6 +37,10 @@ void send_command(const std::string& run_dir, const std::string& action, const s
 /// Runs the fleet; returns the summary (also written to RUN_DIR/summary.json).
 nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log);
 
+/// Why a fleet of `agents` agents cannot run on DDS `domain` (its participants' ports would go
+/// above 65535), or "" if it can. launch() refuses such a fleet with this text.
+std::string domain_problem(int domain, int agents);
+
 /// Short human summary of a summary.json.
 std::string human_summary(const nlohmann::json& s);
 

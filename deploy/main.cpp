@@ -121,6 +121,10 @@ int cmd_run(const RunArgs& a, const char* argv0) {
   o.transport = a.transport;
   o.chaos_seed = a.chaos;
   o.domain = a.domain >= 0 ? a.domain : (std::getenv("MAPTR_DOMAIN") ? std::atoi(std::getenv("MAPTR_DOMAIN")) : 0);
+  if (const std::string why = maptr::deploy::domain_problem(o.domain, s.robot.agents); !why.empty()) {
+    std::cerr << "maptr: " << why << "\n";
+    return 2;
+  }
   fs::create_directories(o.run_dir + "/logs");
   auto log = std::make_shared<spdlog::logger>(
       "launcher", std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.run_dir + "/logs/launcher.log"));
@@ -227,7 +231,7 @@ int main(int argc, char** argv) {
   run->add_option("--speed", ra.speed, "speed of every moving segment, m/s");
   run->add_flag("--realtime", ra.realtime, "pace ticks to the wall clock");
   run->add_option("--out", ra.out, "results folder (default runs/<date>-<scenario>)");
-  run->add_option("--domain", ra.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
+  run->add_option("--domain", ra.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")->check(CLI::Range(0, 232));
   run->add_option("--trace-every", ra.trace_every, "write every n-th tick to trace.csv");
   run->add_option("--tick-hz", ra.tick_hz, "Level-1 control and plant tick rate, Hz (default: the scenario's, 100)");
   run->add_option("--kill", ra.kills, "kill a process at a simulated time, e.g. L3@120 (repeatable)");
@@ -254,7 +258,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(maptr::deploy::experiment_names()));
   expc->add_flag("--quick", eo.quick, "short variant (what the test suite runs)");
   expc->add_option("--out", eo.out, "output folder (default runs/<date>-experiment-<name>)");
-  expc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
+  expc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")->check(CLI::Range(0, 232));
   expc->add_option("--tick-hz", eo.tick_hz, "tick rate, Hz (default 100 for failures, 20 for the others)")
       ->check(CLI::Range(1.0, 10000.0));
   maptr::deploy::BenchOptions bo;
@@ -264,7 +268,7 @@ int main(int argc, char** argv) {
   benchc->add_option("--agents", bench_agents, "comma-separated fleet sizes (scale) or one size (tick)");
   benchc->add_option("--duration", bo.duration_s, "simulated seconds per run")->check(CLI::PositiveNumber);
   benchc->add_option("--out", bo.out, "output folder (default runs/<date>-bench-<what>)");
-  benchc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)");
+  benchc->add_option("--domain", exp_domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")->check(CLI::Range(0, 232));
   benchc->add_flag("--replot", bo.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
   std::string target, run_dir;
   auto* killc = app.add_subcommand("kill", "SIGKILL a process of a running fleet (e.g. L3, group-R, central)");

@@ -158,3 +158,20 @@ TEST(Fleet, BadScenariosAreRefusedBeforeAnyProcessStarts) {
   }
 }
 
+
+TEST(Fleet, ADomainWhosePortsCannotHoldTheFleetIsRefused) {
+  // RTPS ports: 7400 + 250 domain + 11 + 2 id. 256 agents are 262 participants: on domain 232
+  // the last one's port would be 65933; domain 230 is the highest that fits.
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  auto r = run_cli({"run", "--agents", "256", "--domain", "232", "--duration", "1", "--out", out, "--quiet"}, out, 30);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--domain 232"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("65933"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("from 0 to 230"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "a refused run must not create its folder";
+  // Out of the DDS range altogether: a usage error.
+  auto r2 = run_cli({"run", "--domain", "240", "--out", out, "--quiet"}, out, 30);
+  EXPECT_EQ(r2.exit_code, 2) << r2.output;
+  EXPECT_NE(r2.output.find("240"), std::string::npos) << r2.output;
+}
