@@ -598,7 +598,12 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
       status = plant.value("status", "unknown");
   }
   summary["scenario"] = sc.name;
-  summary["scenario_file"] = sc.source;
+  // A scenario of the project is recorded by its path in the project (results are committed
+  // and must not carry the paths of the machine that made them).
+  {
+    const std::string root = std::string(MAPTR_SOURCE_DIR) + "/";
+    summary["scenario_file"] = sc.source.rfind(root, 0) == 0 ? sc.source.substr(root.size()) : sc.source;
+  }
   summary["agents"] = sc.robot.agents;
   summary["mode"] = sc.mode;
   summary["motor"] = sc.robot.motor.type;
