@@ -214,16 +214,10 @@ int run_fastdds_shm_clean() {
 
 }  // namespace
 
-int clean_stale_shm() {
+int clean_stale_shm(const std::set<int>& own_ports) {
   run_fastdds_shm_clean();
   // Then the port files `fastdds shm clean` leaves (see comm/shm_files.hpp).
-  return remove_unused_shm_ports().ports_removed;
-}
-
-int clean_fleet_shm(int domain, int max_participant_id, int extra_port) {
-  std::set<int> ports = rtps_ports(domain, max_participant_id);
-  if (extra_port > 0) ports.insert(extra_port);
-  return remove_unused_shm_ports("/dev/shm", 0.0, &ports).ports_removed;
+  return remove_unused_shm_ports("/dev/shm", 10.0, own_ports).ports_removed;
 }
 
 }  // namespace maptr::comm

@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -191,12 +192,8 @@ DdsOptions options_from_env();
 
 /// Removes Fast DDS shared-memory files in /dev/shm that no live process holds any more:
 /// `fastdds shm clean` for segments, then the unused port files it leaves
-/// (remove_unused_shm_ports). Returns how many port groups were removed.
-int clean_stale_shm();
-
-/// After a fleet has ended: removes the shared-memory ports of `domain` for participant ids
-/// 0..max_participant_id (and `extra_port`, e.g. the discovery server's) that no process maps
-/// or locks any more, however young (see comm/shm_files.hpp). Returns how many were removed.
-int clean_fleet_shm(int domain, int max_participant_id, int extra_port = -1);
+/// (remove_unused_shm_ports): those of `own_ports` at any age (a fleet's own, once every
+/// process of it has ended), the others once 10 s old. Returns how many port groups went.
+int clean_stale_shm(const std::set<int>& own_ports = {});
 
 }  // namespace maptr::comm

@@ -54,28 +54,28 @@ bool flocked(const fs::path& path) {
   return held;
 }
 
-/// "fastrtps_port7413", "fastrtps_port7413_el", "sem.fastrtps_port7413_mutex" -> "7413"; else "".
-std::string port_of(const std::string& name) {
+/// "fastrtps_port7413", "fastrtps_port7413_el", "sem.fastrtps_port7413_mutex" -> 7413; else -1.
+int port_of(const std::string& name) {
   std::string rest;
   if (name.rfind("fastrtps_port", 0) == 0)
     rest = name.substr(13);
   else if (name.rfind("sem.fastrtps_port", 0) == 0)
     rest = name.substr(17);
   else
-    return "";
+    return -1;
   const auto digits = rest.find_first_not_of("0123456789");
   const std::string n = rest.substr(0, digits);
-  if (n.empty()) return "";
+  if (n.empty() || n.size() > 6) return -1;  // ports have at most 5 digits
   const std::string tail = digits == std::string::npos ? "" : rest.substr(digits);
   const bool sem = name[0] == 's';
-  if (sem ? tail == "_mutex" : (tail.empty() || tail == "_el")) return n;
-  return "";
+  if (sem ? tail == "_mutex" : (tail.empty() || tail == "_el")) return std::stoi(n);
+  return -1;
 }
 
 }  // namespace
 
 std::set<int> rtps_ports(int domain, int max_participant_id) {
-  const int base = 7400 + 250 * domain;
+  const int base = rtps_domain_port_base(domain);
   std::set<int> ports = {base, base + 1};
   for (int id = 0; id <= max_participant_id; ++id) {
     ports.insert(base + 10 + 2 * id);
@@ -84,15 +84,13 @@ std::set<int> rtps_ports(int domain, int max_participant_id) {
   return ports;
 }
 
-ShmSweep remove_unused_shm_ports(const std::string& dir, double min_age_s, const std::set<int>* only) {
+ShmSweep remove_unused_shm_ports(const std::string& dir, double min_age_s, const std::set<int>& any_age) {
   ShmSweep r;
-  std::map<std::string, std::vector<fs::path>> ports;
+  std::map<int, std::vector<fs::path>> ports;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
-    const std::string p = port_of(e.path().filename().string());
-    if (p.empty() || p.size() > 9) continue;
-    if (only && !only->count(std::stoi(p))) continue;
-    ports[p].push_back(e.path());
+    const int p = port_of(e.path().filename().string());
+    if (p >= 0) ports[p].push_back(e.path());
   }
   if (ports.empty()) return r;
   std::set<std::string> mapped;
@@ -110,7 +108,7 @@ ShmSweep remove_unused_shm_ports(const std::string& dir, double min_age_s, const
       struct stat st {};
       if (::lstat(f.c_str(), &st) != 0) continue;
       if (st.st_uid != me) foreign = true;
-      if (now - static_cast<double>(st.st_mtime) < min_age_s) young = true;
+      if (!any_age.count(port) && now - static_cast<double>(st.st_mtime) < min_age_s) young = true;
     }
     if (in_use) {
       ++r.ports_in_use;

@@ -25,14 +25,21 @@ struct ShmSweep {
 /// not modified for `min_age_s` seconds (a port just being created is not mapped yet).
 /// Processes whose maps this user may not read (another user's, or the container's init) are
 /// not Fast DDS participants of this user, whose maps are always readable; they are counted.
-/// `only`: if given, only these port numbers are considered (a fleet removing its own ports).
+/// `any_age`: port numbers removed without the age condition (a fleet's own ports, once all
+/// its processes have ended); every other port still needs min_age_s.
 ShmSweep remove_unused_shm_ports(const std::string& dir = "/dev/shm", double min_age_s = 10.0,
-                                 const std::set<int>* only = nullptr);
+                                 const std::set<int>& any_age = {});
 
-/// The port numbers Fast DDS uses on `domain` for participant ids 0..max_participant_id, by the
-/// RTPS well-known port mapping (PB 7400, DG 250, PG 2; d0 0, d1 10, d2 1, d3 11): the two
-/// multicast ports of the domain, and for each id its metatraffic and user unicast ports.
-/// Fast DDS names its shared-memory ports after the same numbers.
+/// RTPS well-known port mapping (PB 7400, DG 250, PG 2; d0 0, d1 10, d2 1, d3 11), which Fast
+/// DDS also uses to name its shared-memory ports. The first port of `domain`:
+inline int rtps_domain_port_base(int domain) { return 7400 + 250 * domain; }
+
+/// The highest participant id whose ports on `domain` stay below 65536 (ids above about 120
+/// already use the next domains' port ranges, which is fine).
+inline int rtps_max_participant_id(int domain) { return (65535 - rtps_domain_port_base(domain) - 11) / 2; }
+
+/// The port numbers of `domain` for participant ids 0..max_participant_id: the two multicast
+/// ports of the domain, and for each id its metatraffic and user unicast ports.
 std::set<int> rtps_ports(int domain, int max_participant_id);
 
 }  // namespace maptr::comm

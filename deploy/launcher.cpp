@@ -25,6 +25,7 @@ extern char** environ;
 #include <thread>
 
 #include "comm/dds.hpp"
+#include "comm/shm_files.hpp"
 #include "deploy/faults.hpp"
 #include "idl/maptrPubSubTypes.h"
 
@@ -174,13 +175,20 @@ nlohmann::json level2_stats(const std::string& run_dir) {
 
 }  // namespace
 
+namespace {
+/// DDS participants of a fleet: discovery server, launcher, plant, central, 2 groups, agents.
+int fleet_participants(int agents) { return 2 + 4 + agents; }
+}  // namespace
+
 std::string domain_problem(int domain, int agents) {
-  const int participants = 2 + 4 + agents;  // discovery server, launcher, plant, central, 2 groups, agents
-  const int top_port = 7400 + 250 * domain + 11 + 2 * (participants - 1);
-  if (domain >= 0 && top_port <= 65535) return "";
+  const int last_id = fleet_participants(agents) - 1;
+  if (domain >= 0 && last_id <= comm::rtps_max_participant_id(domain)) return "";
+  int highest = domain;
+  while (highest > 0 && last_id > comm::rtps_max_participant_id(highest)) --highest;
   return "--domain " + std::to_string(domain) + ": a fleet of " + std::to_string(agents) + " agents has " +
-         std::to_string(participants) + " DDS participants, whose ports would go up to " + std::to_string(top_port) +
-         ", above 65535; use a domain from 0 to " + std::to_string((65535 - 7411 - 2 * (participants - 1)) / 250);
+         std::to_string(last_id + 1) + " DDS participants, whose ports would go up to " +
+         std::to_string(*comm::rtps_ports(domain, last_id).rbegin()) + ", above 65535; use a domain from 0 to " +
+         std::to_string(highest);
 }
 
 nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
@@ -218,14 +226,11 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   // Participant ids: 0 the discovery server, 1 the launcher, then the fleet (plant, central,
   // groups, agents). A fresh id (and so fresh ports) at every start: a restarted process never
   // reuses the shared-memory ports its killed predecessor left behind.
-  const int id_stride = 2 + 4 + sc.robot.agents;
-  // Fast DDS derives each participant's ports from its id (RTPS mapping: 7400 + 250 domain +
-  // 10/11 + 2 id), so ids above about 120 use the port range of the next domains, which is
-  // fine as long as the ports stay below 65536. Restarts cycle through as many id windows as
-  // fit; the oldest window's ports belong to processes that are long gone.
-  const int port_base = 7400 + 250 * o.domain;
-  const int max_fitting_id = (65535 - port_base - 11) / 2;
-  const int id_windows = (max_fitting_id + 1) / id_stride;
+  const int id_stride = fleet_participants(sc.robot.agents);
+  // Fast DDS derives each participant's ports from its id (comm::rtps_ports). Restarts cycle
+  // through as many id windows as stay below port 65536; the oldest window's ports belong to
+  // processes that are long gone.
+  const int id_windows = (comm::rtps_max_participant_id(o.domain) + 1) / id_stride;
   if (id_windows < 1) throw std::runtime_error(domain_problem(o.domain, sc.robot.agents));
   auto participant_id = [&](int base, int starts) { return base + (starts % id_windows) * id_stride; };
   Child ds;
@@ -572,12 +577,14 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     }
     ds.running = false;
   }
-  // Every process of the fleet has ended: its ports go now (clean_fleet_shm), then whatever
-  // older runs left (clean_stale_shm).
-  if (const int own = comm::clean_fleet_shm(o.domain, max_participant_id + 1, ds_port); own > 0)
-    log.info("removed {} Fast DDS shared-memory ports of this fleet from /dev/shm", own);
-  if (const int stale = comm::clean_stale_shm(); stale > 0)
-    log.info("removed {} unused Fast DDS shared-memory ports in /dev/shm", stale);
+  // Every process of the fleet has ended: its ports go now, whatever their age, with what
+  // older runs left.
+  {
+    std::set<int> own = comm::rtps_ports(o.domain, max_participant_id);
+    own.insert(ds_port);
+    if (const int removed = comm::clean_stale_shm(own); removed > 0)
+      log.info("removed {} unused Fast DDS shared-memory ports from /dev/shm (this fleet's and older ones)", removed);
+  }
 
   // 4. Summary.
   nlohmann::json plant;

@@ -12,7 +12,6 @@ using namespace maptr::testing;
 
 namespace {
 
-
 const nlohmann::json* event_of(const nlohmann::json& s, const std::string& name, const std::string& what) {
   for (const auto& e : s["plant"]["membership_events"])
     if (e["name"] == name && e["event"] == what) return &e;

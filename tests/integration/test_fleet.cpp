@@ -158,7 +158,6 @@ TEST(Fleet, BadScenariosAreRefusedBeforeAnyProcessStarts) {
   }
 }
 
-
 TEST(Fleet, ADomainWhosePortsCannotHoldTheFleetIsRefused) {
   // RTPS ports: 7400 + 250 domain + 11 + 2 id. 256 agents are 262 participants: on domain 232
   // the last one's port would be 65933; domain 230 is the highest that fits.

@@ -144,7 +144,7 @@ TEST_F(ShmFiles, AFleetRemovesOnlyItsOwnPortsButAtAnyAge) {
   make_port(47168, 0);  // this fleet's, just released
   make_port(47418, 0);  // another domain's, just as young
   const std::set<int> mine = maptr::comm::rtps_ports(159, 4);
-  const auto r = remove_unused_shm_ports(dir.string(), 0.0, &mine);
+  const auto r = remove_unused_shm_ports(dir.string(), 10.0, mine);
   EXPECT_EQ(r.ports_removed, 1);
   EXPECT_FALSE(has_port_files(47168));
   EXPECT_TRUE(has_port_files(47418));
