@@ -2,7 +2,7 @@
 // Central controller logic, free of DDS: the trajectory's body reference (v_x, w) at the next
 // tick's time, turned into wheel references by the kinematics, and each group's active count
 // relayed to the other group.
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::central {
 

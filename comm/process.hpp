@@ -9,7 +9,7 @@
 #include <string>
 
 #include "comm/dds.hpp"
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::comm {
 

@@ -18,7 +18,7 @@
 #include <thread>
 
 #include "deploy/launcher.hpp"
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::deploy {
 

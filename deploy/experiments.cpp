@@ -34,7 +34,7 @@
 #include <sstream>
 
 #include "deploy/launcher.hpp"
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::deploy {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::deploy {
 

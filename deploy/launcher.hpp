@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::deploy {
 

@@ -15,7 +15,7 @@
 #include "model/motor.hpp"
 #include "deploy/faults.hpp"
 #include "deploy/launcher.hpp"
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 
 namespace fs = std::filesystem;
 using maptr::config::Scenario;

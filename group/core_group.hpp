@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 #include "group/core_level2.hpp"
 
 namespace maptr::group {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "deploy/scenario.hpp"
+#include "config/scenario.hpp"
 #include "plant/integrator.hpp"
 
 namespace maptr::plant {

@@ -6,29 +6,17 @@
 #include <string>
 #include <vector>
 
+#include "control/trajectory.hpp"
 #include "model/params.hpp"
 
 namespace maptr::config {
 
+using control::Segment;
+using control::Trajectory;
+
 class ScenarioError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-};
-
-/// One piece of the trajectory: constant body speed and yaw rate for a duration.
-struct Segment {
-  std::string type = "straight";  ///< "straight" | "arc" | "stop"
-  double speed_mps = 10.0;        ///< v_x reference, m/s
-  double yaw_rate_rad_s = 0.0;    ///< w reference, rad/s (arc: from radius_m if given)
-  double duration_s = 60.0;       ///< s
-};
-
-struct Trajectory {
-  std::vector<Segment> segments{Segment{}};
-  double accel_mps2 = 0.0;        ///< ramp limit on the speed reference, m/s^2 (0: steps)
-  double total_duration() const;
-  /// Reference (v_x, w) at time t; after the last segment: stop.
-  void reference(double t, double& v_x, double& w, int& segment) const;
 };
 
 struct ControlConfig {
