@@ -47,6 +47,7 @@ inline constexpr const char* kGroup = "maptr/group";
 inline constexpr const char* kReady = "maptr/ready";
 inline constexpr const char* kMembership = "maptr/membership";
 inline constexpr const char* kControl = "maptr/control";
+inline constexpr const char* kGate = "maptr/gate";
 }  // namespace topic
 
 enum class Profile {

@@ -45,6 +45,8 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
       return 3;
     }
     for (auto& [t, handle] : ticks_.drain()) {
+      // The plant sends a tick again for a restarted member: a copy of the last one is no news.
+      if (tick_valid(t, per_side) && static_cast<long long>(t.tick()) == last_tick) continue;
       if (!tick_valid(t, per_side) || static_cast<long long>(t.tick()) <= last_tick) {
         ++rejected_;
         log_->warn("rejected a malformed or stale tick {} ({} so far)", t.tick(), rejected_);

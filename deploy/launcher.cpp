@@ -49,6 +49,7 @@ struct Child {
   long max_rss_kB = 0;
   int starts = 0;
   int base_id = 0;  ///< DDS participant id of its first start
+  bool awaiting_ready = false;  ///< restarted: MEMBER_STARTED goes out once it reports ready
 };
 
 double wall_ms_now() {
@@ -177,6 +178,9 @@ nlohmann::json level2_stats(const std::string& run_dir) {
 
 namespace {
 /// DDS participants of a fleet: discovery server, launcher, plant, central, 2 groups, agents.
+/// Wall time a fault gate waits for a restarted process to report ready, s (plus 0.5 s per agent).
+constexpr double kRestartReadyS = 30.0;
+
 int fleet_participants(int agents) { return 2 + 4 + agents; }
 }  // namespace
 
@@ -267,12 +271,14 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   comm::Signal signal;
   comm::Inbox<msg::NodeReady> ready(signal);
   comm::Inbox<msg::PlantTick> ticks(signal);
+  comm::Inbox<msg::FaultGate> gates(signal);
   auto participant = std::make_unique<comm::Participant>("launcher", dds);
   auto& p = *participant;
   p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &ready);
   p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &ticks);
   auto* w_member = p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched);
   auto* w_control = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
+  p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &gates);
 
   std::vector<Child> kids;
   auto add = [&](const std::string& name, const std::string& bin, std::vector<std::string> extra, uint8_t kind,
@@ -467,7 +473,9 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     w_control->write(&c);
   }
 
-  // 2. Run: progress, faults, deaths.
+  // 2. Run: progress, faults, deaths. Scheduled faults act at the plant's fault gates (the
+  // first tick at or after their time, held until they are applied), so that they hit the same
+  // tick in every run; commands from the control FIFO act at once.
   std::vector<config::FaultSpec> faults = sc.faults;
   std::stable_sort(faults.begin(), faults.end(), [](auto& a, auto& b) { return a.at_s < b.at_s; });
   std::size_t next_fault = 0;
@@ -476,6 +484,77 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   auto last_print = Clock::now();
   double sim_t = 0.0, v = 0.0, energy = 0.0;
   int act_L = 0, act_R = 0;
+  uint64_t control_seq = 1;
+  // Restarted processes report ready: the plant may wait for them from now on.
+  auto announce_restarted = [&] {
+    for (auto& [r, h] : ready.drain())
+      for (auto& c : kids)
+        if (c.awaiting_ready && r.ready() && static_cast<pid_t>(r.pid()) == c.pid) {
+          c.awaiting_ready = false;
+          publish_member(c, msg::MEMBER_STARTED);
+          log.info("{} (pid {}) restarted and ready", c.name, c.pid);
+        }
+  };
+  auto apply_fault = [&](const config::FaultSpec& f, double at_s) {
+    auto it = std::find_if(kids.begin(), kids.end(), [&](const Child& c) { return c.name == f.target; });
+    nlohmann::json rec = {{"target", f.target}, {"action", f.action}, {"at_s", at_s}, {"wall_ms", wall_ms_now()}};
+    if (f.target == "discovery") {
+      // The launcher restarts a dead discovery server by itself (see reap).
+      if (f.action == "kill" && ds.running) {
+        kill(ds.pid, SIGKILL);
+        log.warn("fault: killed the discovery server (pid {}) at t={:.2f} s", ds.pid, at_s);
+      } else {
+        rec["skipped"] = "the discovery server is restarted by the launcher when it dies";
+      }
+    } else if (it != kids.end() && it->external) {
+      rec["skipped"] = "an external process is not the launcher's to kill or start";
+    } else if (it != kids.end() && f.action == "kill" && it->running) {
+      kill(it->pid, SIGKILL);
+      log.warn("fault: killed {} (pid {}) at t={:.2f} s", it->name, it->pid, at_s);
+    } else if (it != kids.end() && f.action == "restart" && !it->running) {
+      spawn_kid(*it);
+      it->awaiting_ready = true;
+      log.warn("fault: restarted {} (pid {}) at t={:.2f} s", it->name, it->pid, at_s);
+    } else {
+      rec["skipped"] = "target not in a state for this action";
+    }
+    failures.push_back(rec);
+  };
+  // A fault gate: apply every scheduled fault due at its time, wait until each killed process is
+  // reaped (its death published) and each restarted one is ready, then let the plant go on.
+  auto open_gate = [&](const msg::FaultGate& g) {
+    std::vector<std::string> killed;
+    while (next_fault < faults.size() && g.t() >= faults[next_fault].at_s) {
+      const auto f = faults[next_fault++];
+      if (f.action == "kill") killed.push_back(f.target);
+      apply_fault(f, g.t());
+    }
+    const auto t0 = Clock::now();
+    const double limit = kRestartReadyS + 0.5 * sc.robot.agents;
+    for (;;) {
+      reap(false);
+      announce_restarted();
+      bool pending = false;
+      for (const auto& c : kids) {
+        pending |= c.awaiting_ready && c.running;
+        pending |= c.running && std::find(killed.begin(), killed.end(), c.name) != killed.end();
+      }
+      if (!pending || g_interrupted.load() || plant_done) break;
+      if (since(t0) > limit) {
+        log.error("fault gate at t={:.2f} s: a killed process did not end or a restarted one did not report ready "
+                  "within {:.0f} s; the plant goes on",
+                  g.t(), limit);
+        break;
+      }
+      seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(10));
+    }
+    msg::Control c;
+    c.command(msg::CONTROL_GATE_OPEN);
+    c.seq(++control_seq);
+    c.tick(g.tick());
+    c.member_seq(member_seq);
+    w_control->write(&c);
+  };
   while (status == "ok" && !plant_done) {
     seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(20));
     for (auto& [t, h] : ticks.drain()) {
@@ -496,39 +575,18 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
         std::string action, target;
         line >> action >> target;
         if (action == "kill" || action == "restart") {
-          faults.insert(faults.begin() + static_cast<long>(next_fault), config::FaultSpec{target, action, sim_t});
           log.info("command: {} {}", action, target);
+          apply_fault(config::FaultSpec{target, action, sim_t}, sim_t);
         } else {
           log.warn("ignored control command '{}'", action + " " + target);
         }
       }
     }
-    while (next_fault < faults.size() && sim_t >= faults[next_fault].at_s) {
-      const auto f = faults[next_fault++];
-      auto it = std::find_if(kids.begin(), kids.end(), [&](const Child& c) { return c.name == f.target; });
-      nlohmann::json rec = {{"target", f.target}, {"action", f.action}, {"at_s", sim_t}, {"wall_ms", wall_ms_now()}};
-      if (f.target == "discovery") {
-        // The launcher restarts a dead discovery server by itself (see reap).
-        if (f.action == "kill" && ds.running) {
-          kill(ds.pid, SIGKILL);
-          log.warn("fault: killed the discovery server (pid {}) at t={:.2f} s", ds.pid, sim_t);
-        } else {
-          rec["skipped"] = "the discovery server is restarted by the launcher when it dies";
-        }
-      } else if (it != kids.end() && it->external) {
-        rec["skipped"] = "an external process is not the launcher's to kill or start";
-      } else if (it != kids.end() && f.action == "kill" && it->running) {
-        kill(it->pid, SIGKILL);
-        log.warn("fault: killed {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
-      } else if (it != kids.end() && f.action == "restart" && !it->running) {
-        spawn_kid(*it);
-        publish_member(*it, msg::MEMBER_STARTED);
-        log.warn("fault: restarted {} (pid {}) at t={:.2f} s", it->name, it->pid, sim_t);
-      } else {
-        rec["skipped"] = "target not in a state for this action";
-      }
-      failures.push_back(rec);
+    for (auto& [g, h] : gates.drain()) {
+      sim_t = std::max(sim_t, g.t());
+      open_gate(g);
     }
+    announce_restarted();
     reap(false);
     if (g_interrupted.load()) status = "aborted: interrupted";
     if (o.progress && since(last_print) >= 1.0) {
@@ -539,6 +597,11 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     }
   }
   const double run_wall_s = since(t_run);
+  for (; next_fault < faults.size(); ++next_fault)
+    failures.push_back({{"target", faults[next_fault].target},
+                        {"action", faults[next_fault].action},
+                        {"at_s", faults[next_fault].at_s},
+                        {"skipped", "scheduled after the end of the run"}});
 
   // 3. End every process: the plant's last tick tells them; then SIGTERM, then SIGKILL.
   auto all_done = [&] {

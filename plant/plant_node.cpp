@@ -19,12 +19,28 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using Handle = eprosima::fastrtps::rtps::InstanceHandle_t;
 
+/// Wall time the plant waits for the launcher at a fault gate before going on, s.
+constexpr double kGateTimeoutS = 120.0;
+/// Wall time after which tick k is sent again to a restarted member that has not answered, s.
+constexpr double kResendS = 0.2;
+
 struct Member {
   bool live = true;        ///< waited for at each tick
   bool answered = false;   ///< answered the current tick
   Handle writer{};         ///< DDS writer, learnt from its first sample
   bool writer_known = false;
+  bool rejoining = false;  ///< restarted (launcher): expected from the next tick, not yet heard
 };
+
+/// Simulated times at which the plant holds its tick for the launcher's fault injection: the
+/// first tick at or after each scheduled fault (FaultGate / CONTROL_GATE_OPEN).
+std::vector<double> gate_times(const std::vector<config::FaultSpec>& faults) {
+  std::vector<double> t;
+  for (const auto& f : faults) t.push_back(f.at_s);
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
 
 int count(const std::vector<uint8_t>& m) {
   int n = 0;
@@ -58,6 +74,7 @@ int PlantNode::run() {
   p.reader(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched, &members);
   p.reader(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched, &controls);
   auto* w_ready = p.writer(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched);
+  auto* w_gate = p.writer(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched);
 
   // 1. Discovery: every endpoint of the fleet matched, then tell the launcher.
   const auto t_launch = Clock::now();
@@ -99,7 +116,7 @@ int PlantNode::run() {
   // Deadline: the last resort only; it grows with the fleet (slow is not dead).
   const double deadline_s = 5.0 + 0.05 * n_agents;
   const long long total = sc.ticks();
-  const auto wall0 = Clock::now();
+  auto wall0 = Clock::now();
   std::string status = "ok";
   // Wall-clock cost of each lock-step tick, µs (diagnostics for `maptr bench tick`).
   struct {
@@ -111,8 +128,9 @@ int PlantNode::run() {
     for (int j = 0; j < per_side; ++j) m[j] = agent[s][j].live ? 1 : 0;
     return m;
   };
+  msg::PlantTick sent;  // the tick last published (resent unchanged to a restarted member)
   auto publish = [&](uint8_t run_state) {
-    msg::PlantTick t;
+    msg::PlantTick& t = sent;
     t.tick(static_cast<uint64_t>(core.tick()));
     t.t(core.t());
     t.dt(sc.dt());
@@ -166,11 +184,61 @@ int PlantNode::run() {
     log_->warn("{} {} at t={:.2f} s", name, why, core.t());
   };
   auto mark_alive = [&](Member& m, const std::string& name) {
-    if (!m.live) {
+    if (!m.live || m.rejoining) {
       record(name, "rejoined");
       log_->info("{} answers again at t={:.2f} s: re-admitted", name, core.t());
     }
     m.live = true;
+    m.rejoining = false;
+  };
+  // A member by its process name, or nullptr.
+  auto member_by_name = [&](const std::string& name) -> Member* {
+    int s = 0, j = 0;
+    if (config::parse_agent_name(name, s, j) && j < per_side) return &agent[s][j];
+    if (name == "group-L" || name == "group-R") return &group[name == "group-L" ? 0 : 1];
+    if (name == "central") return &central;
+    return nullptr;
+  };
+  // Launcher events: a death ends the wait for that process; a restarted process that is
+  // matched and ready is waited for from the next tick on (its old writer no longer counts).
+  uint64_t member_seen = 0;
+  auto apply_members = [&] {
+    for (auto& [e, h] : members.drain()) {
+      member_seen = std::max<uint64_t>(member_seen, e.seq());
+      if (e.kind() == msg::MEMBER_DIED) mark_dead_by_name(e.name(), "died (launcher)");
+      if (e.kind() == msg::MEMBER_STARTED)
+        if (Member* m = member_by_name(e.name())) {
+          m->live = true;
+          m->rejoining = true;
+          m->writer_known = false;
+        }
+    }
+  };
+  // Holds tick k until the launcher has applied the faults due at t_k (see FaultGate).
+  const std::vector<double> gates = gate_times(sc.faults);
+  std::size_t next_gate = 0;
+  auto wait_gate = [&](long long k) {
+    msg::FaultGate g;
+    g.tick(static_cast<uint64_t>(k));
+    g.t(core.t());
+    w_gate->write(&g);
+    const auto t0 = Clock::now();
+    bool open = false;
+    uint64_t need = 0;
+    while (!stop.load() && !(open && member_seen >= need)) {
+      for (auto& [c, h] : controls.drain())
+        if (c.command() == msg::CONTROL_GATE_OPEN && c.tick() == static_cast<uint64_t>(k)) {
+          open = true;
+          need = c.member_seq();
+        }
+      apply_members();
+      if (Clock::now() - t0 > std::chrono::duration<double>(kGateTimeoutS)) {
+        log_->error("the launcher did not answer the fault gate of tick {} within {} s: going on", k, kGateTimeoutS);
+        break;
+      }
+      seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(50));
+    }
+    return Clock::now() - t0;
   };
 
   while (!stop.load()) {
@@ -179,6 +247,10 @@ int PlantNode::run() {
       end_reason = "the speed stayed more than " + std::to_string(sc.stop_below_speed_pct) +
                    "% below its reference for 5 s at t=" + std::to_string(core.t()) + " s";
     const bool last = k >= total || core.speed_lost();
+    if (!last && next_gate < gates.size() && core.t() >= gates[next_gate]) {
+      while (next_gate < gates.size() && core.t() >= gates[next_gate]) ++next_gate;
+      wall0 += wait_gate(k);  // a pause for fault injection is not a missed real-time deadline
+    }
     const auto t_pub = Clock::now();
     publish(last ? msg::RUN_FINISHED : msg::RUN_RUNNING);
     if (last) break;
@@ -189,13 +261,12 @@ int PlantNode::run() {
     }
     central.answered = false;
     const auto tick_start = Clock::now();
+    auto last_send = tick_start;
     Clock::time_point t_first{};
     bool got_central = false, got_group[2] = {false, false};
     for (;;) {
       // Membership first, then the samples.
-      for (auto& [e, h] : members.drain()) {
-        if (e.kind() == msg::MEMBER_DIED) mark_dead_by_name(e.name(), "died (launcher)");
-      }
+      apply_members();
       for (const auto& ev : replies.drain_liveliness())
         if (!ev.alive)
           for (int s = 0; s < 2; ++s)
@@ -274,6 +345,18 @@ int PlantNode::run() {
         for (const auto& m : agent[s])
           if (m.live && !m.answered) complete = false;
       if (complete || stop.load()) break;
+      // A restarted member may have matched the tick writer after tick k went out: send it again
+      // (unchanged; followers that have it ignore the copy).
+      bool rejoin_waits = false;
+      for (int s = 0; s < 2; ++s) {
+        for (const auto& m : agent[s]) rejoin_waits |= m.rejoining && !m.answered;
+        rejoin_waits |= group[s].rejoining && !group[s].answered;
+      }
+      rejoin_waits |= central.rejoining && !central.answered;
+      if (rejoin_waits && Clock::now() - last_send > std::chrono::duration<double>(kResendS)) {
+        w_tick->write(&sent);
+        last_send = Clock::now();
+      }
       if (Clock::now() - tick_start > std::chrono::duration<double>(deadline_s)) {
         for (int s = 0; s < 2; ++s)
           for (int j = 0; j < per_side; ++j)
