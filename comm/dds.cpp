@@ -1,5 +1,6 @@
 #include "comm/dds.hpp"
 
+#include "comm/fleet_ids.hpp"
 #include "comm/shm_files.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -9,6 +10,8 @@
 #include <fastrtps/utils/IPLocator.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <mutex>
 #include <stdexcept>
 #include <fcntl.h>
 #include <signal.h>
@@ -91,6 +94,8 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   q.transport().user_transports.push_back(udp);
 
   if (o.participant_id >= 0) q.wire_protocol().participant_id = o.participant_id;
+  if (o.fleet_id != 0 && o.participant_id >= 0 && !o.is_server)
+    q.wire_protocol().prefix = fleet_guid_prefix(o.fleet_id, o.participant_id);
   dp_ = dds::DomainParticipantFactory::get_instance()->create_participant(o.domain, q);
   if (!dp_) throw std::runtime_error("cannot create DDS participant '" + name + "' on domain " + std::to_string(o.domain));
   pub_ = dp_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
@@ -100,21 +105,14 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
 
 Participant::~Participant() {
   if (!dp_) return;
-  for (auto* w : writers_) pub_->delete_datawriter(w);
-  for (auto* r : readers_) sub_->delete_datareader(r);
-  dp_->delete_publisher(pub_);
-  dp_->delete_subscriber(sub_);
-  for (auto* t : topics_) dp_->delete_topic(t);
+  dp_->delete_contained_entities();
   dds::DomainParticipantFactory::get_instance()->delete_participant(dp_);
 }
 
 dds::Topic* Participant::make_topic(const std::string& name, dds::TypeSupport& ts) {
-  if (ts.register_type(dp_) != ReturnCode_t::RETCODE_OK) {
-    // Already registered under this name: fine.
-  }
+  ts.register_type(dp_);  // a second registration of the same type is refused, and harmless
   dds::Topic* t = dp_->create_topic(name, ts.get_type_name(), dds::TOPIC_QOS_DEFAULT);
   if (!t) throw std::runtime_error("cannot create topic " + name);
-  topics_.push_back(t);
   return t;
 }
 
@@ -126,50 +124,63 @@ void apply_liveliness(dds::LivelinessQosPolicy& l, double lease_s) {
   l.announcement_period = eprosima::fastrtps::Duration_t(lease_s / 4.0);
 }
 
+std::string exe_dir() {
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string(".") : exe.parent_path().string();
+}
+
+/// Loads the profiles once: Fast DDS's own default file (FASTRTPS_DEFAULT_PROFILES_FILE or
+/// ./DEFAULT_FASTRTPS_PROFILES.xml), and the shipped file unless the variable names another.
+void load_qos_profiles() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    auto* f = dds::DomainParticipantFactory::get_instance();
+    f->load_profiles();
+    if (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")) return;
+    const std::string file = qos_profiles_file();
+    if (f->load_XML_profiles_file(file) != ReturnCode_t::RETCODE_OK)
+      throw std::runtime_error("cannot load the DDS QoS profiles from " + file);
+  });
+}
+
+const char* profile_name(Profile p, bool writer) {
+  if (p == Profile::kStream) return writer ? "maptr_stream_writer" : "maptr_stream_reader";
+  return writer ? "maptr_latched_writer" : "maptr_latched_reader";
+}
+
+std::runtime_error missing_profile(const char* name) {
+  return std::runtime_error(std::string("DDS QoS profile '") + name + "' not found in " + qos_profiles_file());
+}
+
 }  // namespace
 
+std::string qos_profiles_file() {
+  if (const char* f = std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")) return f;
+  return exe_dir() + "/maptr_qos.xml";
+}
+
 dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l) {
-  dds::DataWriterQos q = dds::DATAWRITER_QOS_DEFAULT;
-  q.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
-  if (p == Profile::kStream) {
-    q.durability().kind = dds::VOLATILE_DURABILITY_QOS;
-    q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
-    q.history().depth = 32;
-    // A lost sample must not stall the lock-step for the default 3 s.
-    q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 50 * 1000000);
-    q.reliable_writer_qos().times.nackResponseDelay = eprosima::fastrtps::Duration_t(0, 0);
-    apply_liveliness(q.liveliness(), o_.lease_s);
-  } else {
-    q.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
-    q.history().kind = dds::KEEP_ALL_HISTORY_QOS;
-    q.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 200 * 1000000);
-  }
-  q.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;
-  q.data_sharing().off();  // plain SHM transport only: no data-sharing segments left in /dev/shm
+  load_qos_profiles();
+  dds::DataWriterQos q;
+  if (pub_->get_datawriter_qos_from_profile(profile_name(p, true), q) != ReturnCode_t::RETCODE_OK)
+    throw missing_profile(profile_name(p, true));
+  if (p == Profile::kStream) apply_liveliness(q.liveliness(), o_.lease_s);
   auto* w = pub_->create_datawriter(t, q, l, l ? dds::StatusMask::publication_matched() : dds::StatusMask::none());
   if (!w) throw std::runtime_error("cannot create writer on " + t->get_name());
-  writers_.push_back(w);
   return w;
 }
 
 dds::DataReader* Participant::reader(dds::Topic* t, Profile p, dds::DataReaderListener* l) {
-  dds::DataReaderQos q = dds::DATAREADER_QOS_DEFAULT;
-  q.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
-  if (p == Profile::kStream) {
-    q.durability().kind = dds::VOLATILE_DURABILITY_QOS;
-    q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
-    q.history().depth = 32;
-    apply_liveliness(q.liveliness(), o_.lease_s);
-  } else {
-    q.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
-    q.history().kind = dds::KEEP_ALL_HISTORY_QOS;
-  }
-  q.data_sharing().off();
+  load_qos_profiles();
+  dds::DataReaderQos q;
+  if (sub_->get_datareader_qos_from_profile(profile_name(p, false), q) != ReturnCode_t::RETCODE_OK)
+    throw missing_profile(profile_name(p, false));
+  if (p == Profile::kStream) apply_liveliness(q.liveliness(), o_.lease_s);
   dds::StatusMask mask = dds::StatusMask::data_available() << dds::StatusMask::subscription_matched()
                          << dds::StatusMask::liveliness_changed();
   auto* r = sub_->create_datareader(t, q, l, mask);
   if (!r) throw std::runtime_error("cannot create reader on " + t->get_name());
-  readers_.push_back(r);
   return r;
 }
 
@@ -181,6 +192,7 @@ DdsOptions options_from_env() {
   if (const char* t = std::getenv("MAPTR_TRANSPORT")) o.shm = std::string(t) != "udp";
   if (const char* id = std::getenv("MAPTR_PARTICIPANT_ID")) o.participant_id = std::atoi(id);
   if (const char* m = std::getenv("MAPTR_SHM_SEGMENT_BYTES")) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
+  if (const char* f = std::getenv("MAPTR_FLEET_ID")) o.fleet_id = static_cast<uint32_t>(std::strtoul(f, nullptr, 10));
   return o;
 }
 

@@ -36,6 +36,7 @@ struct DdsOptions {
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
   int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
   bool shm = true;                      ///< shared memory for data (else UDP on loopback only)
+  uint32_t fleet_id = 0;                ///< the run's fleet id (comm/fleet_ids.hpp); 0: none
 };
 
 /// Topic names (one place).
@@ -50,10 +51,15 @@ inline constexpr const char* kControl = "maptr/control";
 inline constexpr const char* kGate = "maptr/gate";
 }  // namespace topic
 
+/// The QoS profiles of the protocol, defined in comm/maptr_qos.xml (installed as
+/// bin/maptr_qos.xml; FASTRTPS_DEFAULT_PROFILES_FILE replaces it).
 enum class Profile {
   kStream,   ///< lock-step data: reliable, keep-last, volatile, fast heartbeats
   kLatched,  ///< events and readiness: reliable, transient-local, keep-all
 };
+
+/// The XML file the QoS profiles come from (loaded once per process).
+std::string qos_profiles_file();
 
 /// Wakes a node's loop when any of its readers received data.
 class Signal {
@@ -152,8 +158,9 @@ class MatchCounter : public eprosima::fastdds::dds::DataWriterListener {
   std::atomic<int> matched_{0};
 };
 
-/// A participant with one publisher and one subscriber; owns every entity it creates and
-/// deletes them in the right order.
+/// A participant with one publisher and one subscriber; owns every entity it creates
+/// (delete_contained_entities() on destruction). With a fleet id and an explicit participant id,
+/// its GUID prefix is the fleet's (comm/fleet_ids.hpp).
 class Participant {
  public:
   Participant(const std::string& name, const DdsOptions& o);
@@ -182,13 +189,11 @@ class Participant {
   eprosima::fastdds::dds::DomainParticipant* dp_ = nullptr;
   eprosima::fastdds::dds::Publisher* pub_ = nullptr;
   eprosima::fastdds::dds::Subscriber* sub_ = nullptr;
-  std::vector<eprosima::fastdds::dds::DataWriter*> writers_;
-  std::vector<eprosima::fastdds::dds::DataReader*> readers_;
-  std::vector<eprosima::fastdds::dds::Topic*> topics_;
 };
 
-/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER and MAPTR_LEASE_S into the options (the launcher
-/// sets them for its children); explicit command-line values override them.
+/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER, MAPTR_LEASE_S, MAPTR_TRANSPORT,
+/// MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES and MAPTR_FLEET_ID into the options (the
+/// launcher sets them for its children); explicit command-line values override them.
 DdsOptions options_from_env();
 
 /// Removes Fast DDS shared-memory files in /dev/shm that no live process holds any more:

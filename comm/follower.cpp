@@ -1,5 +1,7 @@
 #include "comm/follower.hpp"
 
+#include "comm/fleet_ids.hpp"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -24,6 +26,14 @@ TickFollower::TickFollower(const ProcessArgs& args, uint8_t node_kind, std::shar
   ready_ = p.writer(p.topic<msg::NodeReadyPubSubType>(topic::kReady), Profile::kLatched);
 }
 
+bool TickFollower::from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer) {
+  const int agents = args_.scenario.robot.agents;
+  if (args_.dds.fleet_id != 0) return written_by(args_.dds.fleet_id, agents, writer, "plant");
+  // No fleet id (a process started by hand without one): the first writer heard is the plant.
+  if (!plant_writer_) plant_writer_ = writer;
+  return *plant_writer_ == writer;
+}
+
 int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick) {
   auto& stop = stop_flag();
   const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
@@ -45,6 +55,11 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
       return 3;
     }
     for (auto& [t, handle] : ticks_.drain()) {
+      if (!from_plant(handle)) {
+        ++rejected_;
+        log_->warn("rejected a tick {} from a writer that is not the plant ({} so far)", t.tick(), rejected_);
+        continue;
+      }
       // The plant sends a tick again for a restarted member: a copy of the last one is no news.
       if (tick_valid(t, per_side) && static_cast<long long>(t.tick()) == last_tick) continue;
       if (!tick_valid(t, per_side) || static_cast<long long>(t.tick()) <= last_tick) {

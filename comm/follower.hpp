@@ -1,12 +1,17 @@
 #pragma once
 // The loop every process that follows the plant's ticks runs (agents, groups, central): it
-// reads PlantTick, answers on one writer, announces readiness once both are matched, drops
-// and counts malformed or stale ticks, and ends when the run ends (0), when the plant is lost
-// through DDS liveliness (3) or on SIGTERM/SIGINT (0). The node only says what to answer.
+// reads PlantTick, answers on one writer, announces readiness once both are matched, and ends
+// when the run ends (0), when the plant is lost through DDS liveliness (3) or on SIGTERM/SIGINT
+// (0). The node only says what to answer. A tick counts only if the plant's writer sent it
+// (its fleet GUID prefix; without a fleet id, the first writer heard) and it is newer than the
+// last one; a jump forward is a resynchronisation (after a pause or a restart); an exact copy
+// of the last tick (the plant resends it to a restarted member) is ignored; every other tick
+// (malformed, stale, from another writer) is dropped and counted.
 #include <spdlog/logger.h>
 
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "comm/process.hpp"
 #include "idl/maptrPubSubTypes.h"
@@ -45,6 +50,9 @@ class TickFollower {
   eprosima::fastdds::dds::DataWriter* ready_ = nullptr;
   eprosima::fastdds::dds::DataWriter* answer_ = nullptr;
   uint64_t rejected_ = 0;
+  std::optional<eprosima::fastrtps::rtps::InstanceHandle_t> plant_writer_;
+
+  bool from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
 };
 
 }  // namespace maptr::comm

@@ -19,6 +19,7 @@ extern char** environ;
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -220,7 +221,11 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   const std::string transport =
       o.transport != "auto" ? o.transport : (sc.robot.agents <= 64 ? std::string("shm") : std::string("udp"));
   dds.shm = transport == "shm";
+  // The fleet id makes every participant's GUID prefix say which process of this fleet it is
+  // (comm/fleet_ids.hpp): followers take ticks only from the plant's writer.
+  dds.fleet_id = std::random_device{}() | 1u;
   const std::map<std::string, std::string> env = {
+      {"MAPTR_FLEET_ID", std::to_string(dds.fleet_id)},
       {"MAPTR_TRANSPORT", transport},
       {"MAPTR_DOMAIN", std::to_string(o.domain)},
       {"MAPTR_DISCOVERY_SERVER", dds.discovery_server},
@@ -322,6 +327,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
                             {"discovery_server", dds.discovery_server},
                             {"discovery_server_pid", ds.pid},
                             {"lease_s", dds.lease_s},
+                            {"fleet_id", dds.fleet_id},
                             {"config", cfg},
                             {"run_dir", o.run_dir},
                             {"bin_dir", o.bin_dir}};

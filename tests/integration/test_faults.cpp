@@ -146,6 +146,7 @@ TEST(Faults, AnAgentStartedOutsideTheLauncherIsDetectedByLiveliness) {
     setenv("MAPTR_DOMAIN", std::to_string(fleet["domain"].get<int>()).c_str(), 1);
     setenv("MAPTR_DISCOVERY_SERVER", fleet["discovery_server"].get<std::string>().c_str(), 1);
     setenv("MAPTR_LEASE_S", std::to_string(fleet["lease_s"].get<double>()).c_str(), 1);
+    setenv("MAPTR_FLEET_ID", std::to_string(fleet["fleet_id"].get<uint32_t>()).c_str(), 1);
     for (const auto& p : fleet["processes"])
       if (p["name"] == "L3") setenv("MAPTR_PARTICIPANT_ID", std::to_string(p["participant_id"].get<int>()).c_str(), 1);
     const std::string bin = std::string(MAPTR_BIN_DIR) + "/maptr_agent";

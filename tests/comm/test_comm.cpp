@@ -1,0 +1,134 @@
+// comm/ on its own: the fleet's participant-id and GUID plan, the shipped QoS profiles and
+// their override through FASTRTPS_DEFAULT_PROFILES_FILE. Real DDS participants, no fleet.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "comm/dds.hpp"
+#include "comm/fleet_ids.hpp"
+#include "idl/maptrPubSubTypes.h"
+
+namespace maptr::comm {
+namespace {
+
+namespace rtps = eprosima::fastrtps::rtps;
+
+rtps::InstanceHandle_t handle_of(const rtps::GuidPrefix_t& prefix) {
+  rtps::GUID_t guid;
+  guid.guidPrefix = prefix;
+  guid.entityId = rtps::EntityId_t(0x103);  // any user writer
+  return rtps::InstanceHandle_t(guid);
+}
+
+TEST(FleetIds, NamesAndIdsOfA16AgentFleet) {
+  EXPECT_EQ(base_participant_id("plant", 16), kPlantParticipantId);
+  EXPECT_EQ(base_participant_id("group-R", 16), 5);
+  EXPECT_EQ(base_participant_id("L0", 16), 6);
+  EXPECT_EQ(base_participant_id("R7", 16), 6 + 15);
+  EXPECT_EQ(base_participant_id("R8", 16), -1);
+  EXPECT_EQ(base_participant_id("rogue", 16), -1);
+  // A restart takes the same base in the next id window (stride N + 6 = 22).
+  EXPECT_EQ(participant_name(6 + 3 * 22, 16), "L0");
+  EXPECT_EQ(participant_name(2 + 22, 16), "plant");
+  EXPECT_EQ(participant_name(1, 16), "launcher");
+  for (const std::string name : {"plant", "central", "group-L", "group-R", "L5", "R3"})
+    EXPECT_EQ(participant_name(base_participant_id(name, 16), 16), name);
+}
+
+TEST(FleetIds, AWriterIsKnownByItsFleetAndParticipant) {
+  const uint32_t fleet = 0x5eed1234;
+  const auto plant = handle_of(fleet_guid_prefix(fleet, kPlantParticipantId));
+  EXPECT_TRUE(written_by(fleet, 16, plant, "plant"));
+  EXPECT_FALSE(written_by(fleet, 16, plant, "central"));
+  // The same participant id of another fleet is not this fleet's plant.
+  EXPECT_FALSE(written_by(fleet + 2, 16, plant, "plant"));
+  // A writer with Fast DDS's own prefix (a participant started without a fleet id).
+  rtps::GuidPrefix_t other;
+  other.value[0] = 0x01;
+  other.value[1] = 0x0f;
+  EXPECT_FALSE(fleet_participant(fleet, handle_of(other)).has_value());
+  // Agent L3 restarted twice still writes as L3, and only as L3.
+  const auto l3 = handle_of(fleet_guid_prefix(fleet, base_participant_id("L3", 16) + 2 * fleet_stride(16)));
+  EXPECT_TRUE(written_by(fleet, 16, l3, "L3"));
+  EXPECT_FALSE(written_by(fleet, 16, l3, "L4"));
+}
+
+TEST(FleetIds, PrefixesKeepFastDdsSameHostAndDistinctProcesses) {
+  const auto a = fleet_guid_prefix(7, 2), b = fleet_guid_prefix(7, 3);
+  rtps::GUID_t ga, gb;
+  ga.guidPrefix = a;
+  gb.guidPrefix = b;
+  EXPECT_TRUE(ga.is_on_same_host_as(gb));
+  EXPECT_FALSE(ga.is_on_same_process_as(gb));  // else Fast DDS would deliver intraprocess
+}
+
+DdsOptions private_options() {
+  DdsOptions o;
+  o.domain = 200 + static_cast<int>(getpid()) % 30;
+  o.shm = false;
+  return o;
+}
+
+TEST(QosProfiles, TheShippedProfilesGiveTheProtocolsQos) {
+  ASSERT_TRUE(std::ifstream(qos_profiles_file()).good()) << qos_profiles_file();
+  Participant p("qos-test", private_options());
+  auto* t = p.topic<msg::PlantTickPubSubType>(topic::kTick);
+  auto* w = p.writer(t, Profile::kStream);
+  const auto wq = w->get_qos();
+  EXPECT_EQ(wq.reliability().kind, eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS);
+  EXPECT_EQ(wq.durability().kind, eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS);
+  EXPECT_EQ(wq.history().kind, eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS);
+  EXPECT_EQ(wq.history().depth, 32);
+  EXPECT_EQ(wq.publish_mode().kind, eprosima::fastdds::dds::SYNCHRONOUS_PUBLISH_MODE);
+  EXPECT_EQ(wq.reliable_writer_qos().times.heartbeatPeriod, eprosima::fastrtps::Duration_t(0, 50000000));
+  EXPECT_EQ(wq.liveliness().lease_duration, eprosima::fastrtps::Duration_t(p.options().lease_s));
+  auto* l = p.writer(p.topic<msg::MembershipEventPubSubType>(topic::kMembership), Profile::kLatched);
+  EXPECT_EQ(l->get_qos().durability().kind, eprosima::fastdds::dds::TRANSIENT_LOCAL_DURABILITY_QOS);
+  EXPECT_EQ(l->get_qos().history().kind, eprosima::fastdds::dds::KEEP_ALL_HISTORY_QOS);
+}
+
+TEST(QosProfiles, FastDdsDefaultProfilesFileReplacesTheShippedOne) {
+  // A copy of the shipped file with a deeper tick history, used through the Fast DDS variable
+  // by a fresh process (profiles load once per process).
+  std::stringstream xml;
+  xml << std::ifstream(qos_profiles_file()).rdbuf();
+  std::string text = xml.str();
+  const std::string from = "<historyQos><kind>KEEP_LAST</kind><depth>32</depth></historyQos>";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "<historyQos><kind>KEEP_LAST</kind><depth>7</depth></historyQos>");
+  char path[] = "/tmp/maptr-qos-XXXXXX";
+  const int fd = mkstemp(path);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(write(fd, text.data(), text.size()), static_cast<ssize_t>(text.size()));
+  close(fd);
+  const pid_t child = fork();
+  if (child == 0) {
+    setenv("FASTRTPS_DEFAULT_PROFILES_FILE", path, 1);
+    setenv("MAPTR_QOS_CHILD", "7", 1);
+    execl("/proc/self/exe", "test_comm", "--gtest_filter=QosProfiles.ChildProcessReportsTheTickHistoryDepth",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int st = 0;
+  waitpid(child, &st, 0);
+  unlink(path);
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 0) << "the writer did not take its history depth from the override file";
+}
+
+// Run by the test above in a fresh process: passes when the tick writer's history depth is the
+// one MAPTR_QOS_CHILD names.
+TEST(QosProfiles, ChildProcessReportsTheTickHistoryDepth) {
+  const char* want = std::getenv("MAPTR_QOS_CHILD");
+  if (!want) GTEST_SKIP() << "run by FastDdsDefaultProfilesFileReplacesTheShippedOne";
+  Participant p("qos-override", private_options());
+  EXPECT_EQ(p.writer(p.topic<msg::PlantTickPubSubType>(topic::kTick), Profile::kStream)->get_qos().history().depth,
+            std::atoi(want));
+}
+
+}  // namespace
+}  // namespace maptr::comm
