@@ -110,6 +110,7 @@ Participant::~Participant() {
 }
 
 dds::Topic* Participant::make_topic(const std::string& name, dds::TypeSupport& ts) {
+  if (auto* existing = dynamic_cast<dds::Topic*>(dp_->lookup_topicdescription(name))) return existing;
   ts.register_type(dp_);  // a second registration of the same type is refused, and harmless
   dds::Topic* t = dp_->create_topic(name, ts.get_type_name(), dds::TOPIC_QOS_DEFAULT);
   if (!t) throw std::runtime_error("cannot create topic " + name);

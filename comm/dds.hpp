@@ -168,7 +168,8 @@ class Participant {
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
 
-  /// Registers type T (a fastddsgen PubSubType) once and returns the topic.
+  /// Registers type T (a fastddsgen PubSubType) once and returns the topic (the same one on
+  /// every call with the same name).
   template <class PubSubType>
   eprosima::fastdds::dds::Topic* topic(const std::string& name) {
     eprosima::fastdds::dds::TypeSupport ts(new PubSubType());
