@@ -6,14 +6,14 @@
 
 #include <cmath>
 
-#include "agent/agent_core.hpp"
-#include "model/pid.hpp"
+#include "control/level1/agent_core.hpp"
+#include "control/level1/pid.hpp"
 
 namespace {
 
-using maptr::agent::AgentConfig;
-using maptr::agent::AgentCore;
-using maptr::agent::AgentInput;
+using maptr::control::AgentConfig;
+using maptr::control::AgentCore;
+using maptr::control::AgentInput;
 
 /// Tick k of a side cruising near its reference: phidot = ref - 2 cos(0.05 k) rad/s.
 AgentInput tick(long long k, bool assigned, double side_V) {
@@ -61,7 +61,7 @@ TEST(Agent, WithNoActiveAgentOnItsSideANewcomerStartsAtZeroCurrent) {
 
 TEST(Pid, AlignGivesTheSameOutputsAsTheRunningController) {
   maptr::model::PidParams g;
-  maptr::model::Pid running(g), joining(g);
+  maptr::control::Pid running(g), joining(g);
   double e_prev = 0.0, v = 0.0;
   for (int k = 0; k < 50; ++k) {
     e_prev = 10.0 * std::cos(0.1 * k);

@@ -6,21 +6,21 @@
 #include <cstdio>
 #include <vector>
 
-#include "group/core_level2.hpp"
-#include "model/level2.hpp"
+#include "control/level2/solver.hpp"
+#include "control/level2/problem.hpp"
 #include "model/motor.hpp"
 
 namespace {
 
-using maptr::group::Level2Result;
-using maptr::group::Level2Solver;
-using maptr::model::exhaustive_level2;
-using maptr::model::feasibility_voltage;
-using maptr::model::horizon_efficiency;
-using maptr::model::level2_feasible;
-using maptr::model::Level2Choice;
-using maptr::model::Level2Problem;
-using maptr::model::required_voltage;
+using maptr::control::Level2Result;
+using maptr::control::Level2Solver;
+using maptr::control::exhaustive_level2;
+using maptr::control::feasibility_voltage;
+using maptr::control::horizon_efficiency;
+using maptr::control::level2_feasible;
+using maptr::control::Level2Choice;
+using maptr::control::Level2Problem;
+using maptr::control::required_voltage;
 
 /// Straight line at the reference speed (steady), left side, other side unknown (symmetric).
 Level2Problem straight(int agents, double mass_kg, double speed_m_s, double battery_V,
@@ -134,7 +134,7 @@ TEST(Level2Model, TransientRolloutConvergesToSteadyState) {
 
 /// Ipopt's integer choice vs the oracle over loads, speeds, battery voltages, N and the start
 /// speed (at the reference, or 10 % below it: a transient). Fresh solver per case (cold start).
-void compare_on_grid(const maptr::group::Level2SolverConfig& config, const char* name) {
+void compare_on_grid(const maptr::control::Level2SolverConfig& config, const char* name) {
   int cases = 0, differ = 0, feasible_cases = 0, max_gap = 0;
   std::vector<double> times;
   for (int agents : {8, 16, 32, 64}) {
@@ -179,7 +179,7 @@ void compare_on_grid(const maptr::group::Level2SolverConfig& config, const char*
 TEST(Level2Solver, IpoptMatchesOracleOnGrid) { compare_on_grid({}, "fd hessian"); }
 
 TEST(Level2Solver, IpoptLimitedMemoryMatchesOracleOnGrid) {
-  maptr::group::Level2SolverConfig c;
+  maptr::control::Level2SolverConfig c;
   c.fd_hessian = false;
   compare_on_grid(c, "limited-memory");
 }

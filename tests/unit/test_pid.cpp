@@ -4,11 +4,11 @@
 #include <vector>
 
 #include "model/params.hpp"
-#include "model/pid.hpp"
+#include "control/level1/pid.hpp"
 
 namespace {
 
-using maptr::model::Pid;
+using maptr::control::Pid;
 using maptr::model::PidParams;
 
 PidParams gains(double kp, double ki, double kd) {

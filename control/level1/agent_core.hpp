@@ -14,10 +14,10 @@
 //                                   stop_decel (a safe stop), still obeying the group
 #include <cstdint>
 
+#include "control/level1/pid.hpp"
 #include "model/params.hpp"
-#include "model/pid.hpp"
 
-namespace maptr::agent {
+namespace maptr::control {
 
 enum class AgentState : uint8_t { kIdle = 0, kActive = 1, kHolding = 2, kCoasting = 3, kStopping = 4 };
 
@@ -34,13 +34,13 @@ struct AgentConfig {
 /// What an agent reads from one tick (its own side's values).
 struct AgentInput {
   long long tick = 0;
-  double phidot_rad_s = 0.0;     ///< its wheel's speed
-  double battery_V = 0.0;        ///< its group's battery voltage
-  double side_active_V = 0.0;    ///< mean voltage its side's active agents applied last tick, 0 if none
-  double phidot_ref_rad_s = 0.0; ///< reference in force
-  long long central_stamp = -1;  ///< tick of the central command in force
-  bool assigned = false;         ///< its bit in the group's active mask
-  long long group_stamp = -1;    ///< tick of the group status in force
+  double phidot_rad_s = 0.0;      ///< its wheel's speed
+  double battery_V = 0.0;         ///< its group's battery voltage
+  double side_active_V = 0.0;     ///< mean voltage its side's active agents applied last tick, 0 if none
+  double phidot_ref_rad_s = 0.0;  ///< reference in force
+  long long central_stamp = -1;   ///< tick of the central command in force
+  bool assigned = false;          ///< its bit in the group's active mask
+  long long group_stamp = -1;     ///< tick of the group status in force
 };
 
 struct AgentOutput {
@@ -48,7 +48,9 @@ struct AgentOutput {
   double current_A = 0.0;
   double efficiency = 0.0;
   AgentState state = AgentState::kIdle;
-  bool drives() const { return state == AgentState::kActive || state == AgentState::kHolding || state == AgentState::kStopping; }
+  bool drives() const {
+    return state == AgentState::kActive || state == AgentState::kHolding || state == AgentState::kStopping;
+  }
 };
 
 class AgentCore {
@@ -58,12 +60,12 @@ class AgentCore {
 
  private:
   AgentConfig c_;
-  model::Pid pid_;
+  Pid pid_;
   bool last_assigned_ = false;
   bool was_driving_ = false;
-  double stop_ref_ = 0.0;  ///< reference while stopping, rad/s
+  double stop_ref_ = 0.0;    ///< reference while stopping, rad/s
   double prev_error_ = 0.0;  ///< last tick's speed error, rad/s (tracked while idle too)
   bool has_prev_error_ = false;
 };
 
-}  // namespace maptr::agent
+}  // namespace maptr::control
