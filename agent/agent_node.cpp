@@ -8,6 +8,13 @@
 namespace maptr::agent {
 
 namespace {
+static_assert(static_cast<uint8_t>(control::AgentState::kIdle) == msg::AGENT_IDLE &&
+                  static_cast<uint8_t>(control::AgentState::kActive) == msg::AGENT_ACTIVE &&
+                  static_cast<uint8_t>(control::AgentState::kHolding) == msg::AGENT_HOLDING &&
+                  static_cast<uint8_t>(control::AgentState::kCoasting) == msg::AGENT_COASTING &&
+                  static_cast<uint8_t>(control::AgentState::kStopping) == msg::AGENT_STOPPING,
+              "the agent core's states are the message's");
+
 control::AgentConfig make_config(const config::Scenario& s) {
   control::AgentConfig c;
   c.motor = s.robot.motor;

@@ -1,17 +1,16 @@
 #pragma once
-// Agent logic for one wheel-motor pair (Level 1), free of DDS and clocks: it sees the tick
-// the plant published and returns the voltage to apply for [t_k, t_k+1].
-//   assigned active by its group -> PID on phidot_ref - phidot, clamped to [0, V_B]
-//   becoming active: the PID joins the side's running PIDs (Pid::align to the mean voltage
-//                                   they applied last tick): every agent of a side sees the
-//                                   same error, so agents that start level stay level and
-//                                   share the load evenly; with none active it starts at the
-//                                   back-EMF (zero current)
-//   not assigned                 -> open circuit (0 V, PID reset)
+// Level 1 of one agent (wheel-motor pair): from the tick the plant published, the voltage
+// [V] to apply over [t_k, t_k+1]. Explicit time (ticks of dt_s), no DDS, no clock.
+//   assigned by its group    -> PID on e = phidot_ref - phidot [rad/s], clamped to [0, V_B]
+//   becoming active          -> the PID joins the side's running PIDs (Pid::align to the mean
+//                               voltage they applied last tick), so the side's agents share the
+//                               load evenly; with none active it starts at the back-EMF
+//                               (zero current)
+//   not assigned             -> open circuit (0 V, PID reset)
 //   group silent (its status older than one tick): hold the last assignment for group_hold_s,
-//                                   then coast (open circuit)
+//                               then coast (open circuit)
 //   central silent longer than central_timeout_s: ramp the last reference to zero at
-//                                   stop_decel (a safe stop), still obeying the group
+//                               stop_decel_mps2 / r [rad/s^2] (a safe stop), still obeying the group
 #include <cstdint>
 
 #include "control/level1/pid.hpp"
@@ -24,11 +23,11 @@ enum class AgentState : uint8_t { kIdle = 0, kActive = 1, kHolding = 2, kCoastin
 struct AgentConfig {
   model::MotorParams motor;
   model::PidParams pid;
-  double wheel_radius_m = 0.035;
-  double dt_s = 0.01;
-  double group_hold_s = 1.0;
-  double central_timeout_s = 1.0;
-  double stop_decel_mps2 = 2.0;
+  double wheel_radius_m = 0.035;   ///< r, m
+  double dt_s = 0.01;              ///< tick period, s
+  double group_hold_s = 1.0;       ///< s a silent group's last assignment is held
+  double central_timeout_s = 1.0;  ///< s of silence from central before the safe stop
+  double stop_decel_mps2 = 2.0;    ///< deceleration of the safe stop, m/s^2
 };
 
 /// What an agent reads from one tick (its own side's values).

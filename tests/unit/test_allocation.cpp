@@ -1,4 +1,4 @@
-// Level-3 allocation (model/allocation.hpp) against brute force over every subset.
+// Level-3 allocation (control/level3/allocation.hpp) against brute force over every subset.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Level 2 (model/level2.hpp oracle and objective, group/core_level2.hpp Ipopt adapter).
+// Level 2 (control/level2/problem.hpp: objective and oracle; control/level2/solver.hpp: Ipopt).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -68,8 +68,6 @@ TEST(Level2Oracle, InfeasibleLoadRunsAllLiveAgents) {
   const Level2Result r = solver.solve(p);
   EXPECT_FALSE(r.feasible);
   EXPECT_EQ(r.n_active, 6);
-  std::printf("[ Level2 ] infeasible case: ipopt_status %d, %d iterations, %.2f ms\n", r.ipopt_status,
-              r.iterations, r.solve_time_ms);
 }
 
 TEST(Level2Model, RequiredVoltageClosedForm) {
@@ -117,8 +115,6 @@ TEST(Level2Model, EfficiencyBoundsAndPartialActivationPays) {
   EXPECT_LT(c.n_active, p.live);
   const double eta_opt = horizon_efficiency(p, c.n_active) / p.horizon;
   const double eta_all = horizon_efficiency(p, p.live) / p.horizon;
-  std::printf("[ Level2 ] 13.2 kg, 10 m/s, N=16: N_a=%d per side, eta %.3f vs %.3f with all %d\n", c.n_active,
-              eta_opt, eta_all, p.live);
   EXPECT_GT(eta_opt, eta_all + 0.05);
 }
 
@@ -238,22 +234,6 @@ TEST(Level2Solver, WarmStartFollowsSlowlyChangingLoad) {
     EXPECT_EQ(differ, 0) << "of " << n;
     std::printf("[ Level2 ] warm-started, N %d: %d of %d differ, median solve %.2f ms\n", agents, differ, n,
                 median(times));
-  }
-}
-
-TEST(Level2Oracle, PaperLoadsTable) {
-  std::printf("[ Level2 ] oracle N_a per side, N = 16 (8 per side), V_B = 23.4 V, straight line\n");
-  std::printf("[ Level2 ]  gross kg |  10 m/s        |  20 m/s\n");
-  for (double m : {13.2, 18.2, 23.2, 28.2, 33.2, 38.2}) {
-    const Level2Choice a = exhaustive_level2(straight(16, m, 10.0, 23.4));
-    const Level2Choice b = exhaustive_level2(straight(16, m, 20.0, 23.4));
-    const Level2Problem pa = straight(16, m, 10.0, 23.4);
-    const Level2Problem pb = straight(16, m, 20.0, 23.4);
-    std::printf("[ Level2 ]  %8.1f | %d (eta %.3f)%s | %d (eta %.3f)%s V_req(all)=%.2f V\n", m, a.n_active,
-                horizon_efficiency(pa, a.n_active) / 10.0, a.feasible ? "" : " INF", b.n_active,
-                horizon_efficiency(pb, b.n_active) / 10.0, b.feasible ? "" : " INF",
-                feasibility_voltage(pb, pb.live));
-    EXPECT_TRUE(a.feasible);
   }
 }
 
