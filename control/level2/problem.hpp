@@ -30,8 +30,6 @@ struct Level2Problem {
 
   /// Throws ParamError naming the field if the problem is malformed.
   void validate() const;
-  /// Wheel speed reference of this side, rad/s.
-  double phidot_ref_side() const { return side == 0 ? phidot_ref_L : phidot_ref_R; }
 };
 
 /// J(n): sum over the H steps of one active motor's mean efficiency on this side, in [0, H].
