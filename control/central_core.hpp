@@ -3,6 +3,8 @@
 // t_{k+1} = t_k + dt, turned into wheel speed references by the skid-steer kinematics,
 //   phidot_L = (v_x - (a/2) w) / r,  phidot_R = (v_x + (a/2) w) / r     [rad/s],
 // and each group's active count relayed to the other group. Pure: explicit time, no DDS.
+#include <utility>
+
 #include "control/trajectory.hpp"
 
 namespace maptr::control {
