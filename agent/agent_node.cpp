@@ -3,12 +3,20 @@
 #include <unistd.h>
 
 #include "comm/follower.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::agent {
 
 namespace {
-AgentConfig make_config(const config::Scenario& s) {
-  AgentConfig c;
+static_assert(static_cast<uint8_t>(control::AgentState::kIdle) == msg::AGENT_IDLE &&
+                  static_cast<uint8_t>(control::AgentState::kActive) == msg::AGENT_ACTIVE &&
+                  static_cast<uint8_t>(control::AgentState::kHolding) == msg::AGENT_HOLDING &&
+                  static_cast<uint8_t>(control::AgentState::kCoasting) == msg::AGENT_COASTING &&
+                  static_cast<uint8_t>(control::AgentState::kStopping) == msg::AGENT_STOPPING,
+              "the agent core's states are the message's");
+
+control::AgentConfig make_config(const config::Scenario& s) {
+  control::AgentConfig c;
   c.motor = s.robot.motor;
   c.pid = s.control.pid;
   c.wheel_radius_m = s.robot.wheel_radius_m;
@@ -27,7 +35,7 @@ int AgentNode::run() {
   comm::TickFollower follower(args_, msg::NODE_AGENT, log_);
   auto* w_reply = follower.answer_writer<msg::AgentReplyPubSubType>(comm::topic::kAgentReply);
   return follower.run([&](const msg::PlantTick& t) {
-    AgentInput in;
+    control::AgentInput in;
     in.tick = static_cast<long long>(t.tick());
     in.phidot_rad_s = side_ == 0 ? t.phidot_L() : t.phidot_R();
     in.battery_V = side_ == 0 ? t.battery_V_L() : t.battery_V_R();
@@ -36,7 +44,7 @@ int AgentNode::run() {
     in.central_stamp = t.central_stamp();
     in.group_stamp = side_ == 0 ? t.group_stamp_L() : t.group_stamp_R();
     in.assigned = (side_ == 0 ? t.active_L() : t.active_R())[index_] != 0;
-    const AgentOutput out = core_.step(in);
+    const control::AgentOutput out = core_.step(in);
     msg::AgentReply rep;
     rep.tick(t.tick());
     rep.side(static_cast<uint8_t>(side_));

@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "agent/agent_core.hpp"
 #include "comm/process.hpp"
+#include "control/level1/agent_core.hpp"
 
 namespace maptr::agent {
 
@@ -19,7 +19,7 @@ class AgentNode {
   const comm::ProcessArgs& args_;
   int side_, index_;
   std::shared_ptr<spdlog::logger> log_;
-  AgentCore core_;
+  control::AgentCore core_;
 };
 
 }  // namespace maptr::agent

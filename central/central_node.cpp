@@ -1,17 +1,29 @@
 #include "central/central_node.hpp"
 
 #include "comm/follower.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::central {
 
+namespace {
+control::CentralConfig make_config(const config::Scenario& s) {
+  control::CentralConfig c;
+  c.trajectory = s.trajectory;
+  c.dt_s = s.dt();
+  c.track_m = s.robot.track_m;
+  c.wheel_radius_m = s.robot.wheel_radius_m;
+  return c;
+}
+}  // namespace
+
 CentralNode::CentralNode(const comm::ProcessArgs& args, std::shared_ptr<spdlog::logger> log)
-    : args_(args), log_(std::move(log)), core_(args.scenario) {}
+    : args_(args), log_(std::move(log)), core_(make_config(args.scenario)) {}
 
 int CentralNode::run() {
   comm::TickFollower follower(args_, msg::NODE_CENTRAL, log_);
   auto* w_cmd = follower.answer_writer<msg::CentralCommandPubSubType>(comm::topic::kCentral);
   return follower.run([&](const msg::PlantTick& t) {
-    const CentralOutput o = core_.step(t.t(), t.n_active_L(), t.n_active_R());
+    const control::CentralOutput o = core_.step(t.t(), t.n_active_L(), t.n_active_R());
     msg::CentralCommand c;
     c.tick(t.tick());
     c.v_x_ref(o.v_x_ref);

@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "central/central_core.hpp"
 #include "comm/process.hpp"
+#include "control/central_core.hpp"
 
 namespace maptr::central {
 
@@ -17,7 +17,7 @@ class CentralNode {
  private:
   const comm::ProcessArgs& args_;
   std::shared_ptr<spdlog::logger> log_;
-  CentralCore core_;
+  control::CentralCore core_;
 };
 
 }  // namespace maptr::central

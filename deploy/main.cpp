@@ -11,7 +11,7 @@
 
 #include "deploy/bench.hpp"
 #include "deploy/experiments.hpp"
-#include "model/level2.hpp"
+#include "control/level2/problem.hpp"
 #include "model/motor.hpp"
 #include "deploy/faults.hpp"
 #include "deploy/launcher.hpp"
@@ -171,7 +171,7 @@ int cmd_level2(const RunArgs& a, double battery_V) {
     return 2;
   }
   const double v = a.speed >= 0 ? a.speed : s.trajectory.segments.front().speed_mps;
-  maptr::model::Level2Problem p;
+  maptr::control::Level2Problem p;
   p.robot = s.robot;
   p.live = s.robot.per_side();
   p.v_x = v;
@@ -186,14 +186,14 @@ int cmd_level2(const RunArgs& a, double battery_V) {
               "feasible");
   for (int n = 1; n <= p.live; ++n) {
     p.n_other = n;
-    const double vn = maptr::model::required_voltage(p, n);
+    const double vn = maptr::control::required_voltage(p, n);
     const double i = maptr::model::armature_current(s.robot.motor, vn, ph);
-    std::printf("%4d %10.4f %10.3f %9.3f %9.4f %12.2f  %s\n", n, maptr::model::horizon_efficiency(p, n), vn,
+    std::printf("%4d %10.4f %10.3f %9.3f %9.4f %12.2f  %s\n", n, maptr::control::horizon_efficiency(p, n), vn,
                 vn / p.battery_V, maptr::model::efficiency(s.robot.motor, vn, ph), n * vn * i,
-                maptr::model::level2_feasible(p, n) ? "yes" : "no (needs more than V_B)");
+                maptr::control::level2_feasible(p, n) ? "yes" : "no (needs more than V_B)");
   }
   p.n_other = 0;
-  const auto c = maptr::model::exhaustive_level2(p);
+  const auto c = maptr::control::exhaustive_level2(p);
   std::printf("oracle: N_a = %d per side%s\n", c.n_active,
               c.feasible ? "" : " (no N_a can hold the speed: every live agent runs)");
   return 0;

@@ -3,14 +3,36 @@
 #include <fstream>
 
 #include "comm/follower.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::group {
+
+namespace {
+static_assert(control::kL2None == msg::L2_NONE && control::kL2Ok == msg::L2_OK &&
+                  control::kL2Infeasible == msg::L2_INFEASIBLE && control::kL2Failed == msg::L2_SOLVER_FAILED,
+              "the group core's Level-2 status values are the message's");
+
+control::GroupConfig make_config(const config::Scenario& s) {
+  control::GroupConfig c;
+  c.robot = s.robot;
+  c.mode = s.mode == "all" ? control::GroupMode::kAll : control::GroupMode::kEnergyConscious;
+  c.dt_s = s.dt();
+  c.level2_period_s = s.control.level2_period_s;
+  c.horizon = s.control.horizon;
+  c.horizon_step_s = s.control.horizon_step_s;
+  c.t_on_s = s.control.t_on_s;
+  c.thermal_limit_s = s.control.thermal_limit_s;
+  c.oracle = s.control.oracle;
+  return c;
+}
+}  // namespace
 
 GroupNode::GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<spdlog::logger> log)
     : args_(args),
       side_(side),
       log_(std::move(log)),
-      core_(side, args.scenario, args.run_dir + "/ledger-" + (side == 0 ? "L" : "R") + ".json") {}
+      core_(side, make_config(args.scenario), args.run_dir + "/ledger-" + (side == 0 ? "L" : "R") + ".json") {
+}
 
 int GroupNode::run() {
   comm::TickFollower follower(args_, msg::NODE_GROUP, log_);
@@ -26,7 +48,7 @@ int GroupNode::run() {
   if (l2_new) l2 << "t_s,n_live,n_other,status,relaxed,ipopt_n_active,oracle_n_active,n_target,solve_ms\n";
   bool infeasible = false;
   const int code = follower.run([&](const msg::PlantTick& t) {
-    GroupInput in;
+    control::GroupInput in;
     in.tick = static_cast<long long>(t.tick());
     in.t = t.t();
     in.v_x = t.v_x();
@@ -38,19 +60,20 @@ int GroupNode::run() {
     in.live = side_ == 0 ? t.live_L() : t.live_R();
     in.active = side_ == 0 ? t.active_L() : t.active_R();
     in.n_other = side_ == 0 ? t.relay_count_L() : t.relay_count_R();
-    const GroupDecision d = core_.step(in);
+    const control::GroupDecision d = core_.step(in);
     if (d.level2_ran && (d.level2_status == msg::L2_INFEASIBLE) != infeasible) {
       infeasible = !infeasible;
       if (infeasible)
-        log_->warn("Level 2 infeasible at t={:.2f} s: {} live agents cannot hold the reference; all of them run",
-                   in.t, d.n_live);
+        log_->warn(
+            "Level 2 infeasible at t={:.2f} s: {} live agents cannot hold the reference; all of them run",
+            in.t, d.n_live);
       else
         log_->info("Level 2 feasible again at t={:.2f} s", in.t);
     }
     if (d.level2_ran && l2)
       l2 << in.t << ',' << d.n_live << ',' << in.n_other << ',' << static_cast<int>(d.level2_status) << ','
-         << d.level2_relaxed << ',' << d.ipopt_n_active << ',' << d.oracle_n_active << ',' << d.n_active << ','
-         << d.solve_time_ms << '\n'
+         << d.level2_relaxed << ',' << d.ipopt_n_active << ',' << d.oracle_n_active << ',' << d.n_active
+         << ',' << d.solve_time_ms << '\n'
          << std::flush;
     msg::GroupStatus st;
     st.tick(t.tick());
@@ -71,7 +94,8 @@ int GroupNode::run() {
     w_group->write(&st);
   });
   core_.save();
-  log_->info("ledger saved: {} decisions, {} reallocations", core_.ledger().decisions, core_.ledger().reallocations);
+  log_->info("ledger saved: {} decisions, {} reallocations", core_.ledger().decisions,
+             core_.ledger().reallocations);
   return code;
 }
 

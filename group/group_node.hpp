@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "comm/process.hpp"
-#include "group/core_group.hpp"
+#include "control/group_core.hpp"
 
 namespace maptr::group {
 
@@ -18,7 +18,7 @@ class GroupNode {
   const comm::ProcessArgs& args_;
   int side_;
   std::shared_ptr<spdlog::logger> log_;
-  GroupCore core_;
+  control::GroupCore core_;
 };
 
 }  // namespace maptr::group

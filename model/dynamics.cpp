@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "model/kinematics.hpp"
 #include "model/motor.hpp"
 
 namespace maptr::model {
@@ -18,25 +19,28 @@ SideLoad side_load(const MotorParams& m, const std::vector<double>& voltage,
     if (active[i]) {
       const double v = voltage[i];
       const double cur = armature_current(m, v, phidot);
-      s.torque_Nm += m.torque_constant_NmA * (cur - m.no_load_current_A * sgn) - drag;
+      s.torque_Nm += active_torque(m, cur, phidot);
       s.current_A += cur;
       s.power_W += v * cur;
       s.joule_W += cur * cur * m.resistance_ohm;
       s.motor_loss_W += (m.torque_constant_NmA * m.no_load_current_A * sgn + drag) * phidot;
       s.emf_loss_W += (m.back_emf_Vs - m.torque_constant_NmA) * cur * phidot;
     } else {
-      s.torque_Nm -= drag;
+      s.torque_Nm += inactive_torque(m, phidot);
       s.motor_loss_W += drag * phidot;
     }
   }
   return s;
 }
 
-double kinetic_energy(const RobotParams& p, double v, double w) {
+EffectiveInertia effective_inertia(const RobotParams& p) {
   const double r = p.wheel_radius_m, a = p.track_m, n = p.agents, iw = p.wheel_inertia();
-  const double m_eff = p.gross_mass_kg + n * iw / (r * r);
-  const double i_eff = p.yaw_inertia() + n * iw * a * a / (4.0 * r * r);
-  return 0.5 * m_eff * v * v + 0.5 * i_eff * w * w;
+  return {p.gross_mass_kg + n * iw / (r * r), p.yaw_inertia() + n * iw * a * a / (4.0 * r * r)};
+}
+
+double kinetic_energy(const RobotParams& p, double v, double w) {
+  const EffectiveInertia in = effective_inertia(p);
+  return 0.5 * in.mass_kg * v * v + 0.5 * in.yaw_kgm2 * w * w;
 }
 
 double rolling_resistance(const RobotParams& p, double v) {
@@ -46,7 +50,8 @@ double rolling_resistance(const RobotParams& p, double v) {
 BodyForces body_forces(const RobotParams& p, double tau_l, double tau_r, double v, double w) {
   const double r = p.wheel_radius_m, a = p.track_m;
   const int n = p.agents;
-  const double v_l = v - 0.5 * a * w, v_r = v + 0.5 * a * w;
+  const WheelSpeeds ws = to_wheels({v, w}, a);
+  const double v_l = ws.v_L, v_r = ws.v_R;
   // Rolling resistance: N/2 wheels per side, normal load m g / N each.
   const double per_wheel = p.gross_mass_kg * p.gravity / n;
   const double roll_l = 0.5 * n * p.mu_rolling * per_wheel * kTwoOverPi * std::atan(p.k_s * v_l);
@@ -62,11 +67,9 @@ BodyForces body_forces(const RobotParams& p, double tau_l, double tau_r, double 
   BodyForces b;
   b.f_rx = roll_l + roll_r;
   b.m_r = m_lat + 0.5 * a * (roll_r - roll_l);
-  const double iw = p.wheel_inertia();
-  const double m_eff = p.gross_mass_kg + n * iw / (r * r);
-  const double i_eff = p.yaw_inertia() + n * iw * a * a / (4.0 * r * r);
-  b.dv_x = ((tau_l + tau_r) / r - b.f_rx) / m_eff;
-  b.dw = (0.5 * a * (tau_r - tau_l) / r - b.m_r) / i_eff;
+  const EffectiveInertia in = effective_inertia(p);
+  b.dv_x = ((tau_l + tau_r) / r - b.f_rx) / in.mass_kg;
+  b.dw = (0.5 * a * (tau_r - tau_l) / r - b.m_r) / in.yaw_kgm2;
   b.ground_loss_W = roll_l * v_l + roll_r * v_r + p_lat;
   return b;
 }
@@ -74,7 +77,8 @@ BodyForces body_forces(const RobotParams& p, double tau_l, double tau_r, double 
 void derivative(const RobotParams& p, const Inputs& u, const double* x, double* dx) {
   const double r = p.wheel_radius_m, a = p.track_m;
   const double v = x[kVx], w = x[kW], th = x[kTheta];
-  const double v_l = v - 0.5 * a * w, v_r = v + 0.5 * a * w;
+  const WheelSpeeds ws = to_wheels({v, w}, a);
+  const double v_l = ws.v_L, v_r = ws.v_R;
   const SideLoad left = side_load(p.motor, u.voltage_L, u.active_L, v_l / r);
   const SideLoad right = side_load(p.motor, u.voltage_R, u.active_R, v_r / r);
   const BodyForces b = body_forces(p, left.torque_Nm, right.torque_Nm, v, w);
@@ -86,7 +90,7 @@ void derivative(const RobotParams& p, const Inputs& u, const double* x, double* 
   dx[kW] = b.dw;
   dx[kEnergyL] = left.power_W;
   dx[kEnergyR] = right.power_W;
-  dx[kChargeL] = left.current_A / 3.6;   // A -> mAh/s
+  dx[kChargeL] = left.current_A / 3.6;  // A -> mAh/s
   dx[kChargeR] = right.current_A / 3.6;
   dx[kPathL] = std::fabs(v_l);
   dx[kPathR] = std::fabs(v_r);

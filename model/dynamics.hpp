@@ -1,5 +1,5 @@
 #pragma once
-// The plant's derivative function (paper Sec. 3 with DESIGN's corrections), for any N.
+// The plant's derivative function (paper Sec. 3, corrected as docs/MODEL.md lists), for any N.
 //
 //   (m + N I_w / r^2) dv_x/dt            = (tau_L + tau_R) / r - F_rx
 //   (I_zz + N I_w a^2 / (4 r^2)) dw/dt   = (a/2)(tau_R - tau_L) / r - M_r
@@ -21,21 +21,21 @@
 namespace maptr::model {
 
 enum StateIndex : int {
-  kX = 0,       ///< m, world
-  kY,           ///< m, world
-  kTheta,       ///< rad
-  kVx,          ///< m/s, body forward speed
-  kW,           ///< rad/s, yaw rate
-  kEnergyL,     ///< J drawn from the left battery
-  kEnergyR,     ///< J
-  kChargeL,     ///< mAh drawn from the left battery
-  kChargeR,     ///< mAh
-  kPathL,       ///< m, integral of |v_L|
-  kPathR,       ///< m, integral of |v_R|
-  kDistance,    ///< m, integral of |v_x|
-  kLossJoule,   ///< J, I^2 R
-  kLossMech,    ///< J, ground friction + motor friction + viscous drag
-  kLossEmf,     ///< J, (K_e - K_T) I phidot (the datasheet's K_e != K_T)
+  kX = 0,      ///< m, world
+  kY,          ///< m, world
+  kTheta,      ///< rad
+  kVx,         ///< m/s, body forward speed
+  kW,          ///< rad/s, yaw rate
+  kEnergyL,    ///< J drawn from the left battery
+  kEnergyR,    ///< J
+  kChargeL,    ///< mAh drawn from the left battery
+  kChargeR,    ///< mAh
+  kPathL,      ///< m, integral of |v_L|
+  kPathR,      ///< m, integral of |v_R|
+  kDistance,   ///< m, integral of |v_x|
+  kLossJoule,  ///< J, I^2 R
+  kLossMech,   ///< J, ground friction + motor friction + viscous drag
+  kLossEmf,    ///< J, (K_e - K_T) I phidot (the datasheet's K_e != K_T)
   kStateSize
 };
 
@@ -44,8 +44,8 @@ using State = std::array<double, kStateSize>;
 /// Inputs held over one tick (zero-order hold): each agent's voltage and activation.
 /// Index i of side s is agent s<i>; voltage of an inactive agent is ignored.
 struct Inputs {
-  std::vector<double> voltage_L, voltage_R;   ///< V
-  std::vector<uint8_t> active_L, active_R;    ///< 1 = motor driven, 0 = free-wheeling
+  std::vector<double> voltage_L, voltage_R;  ///< V
+  std::vector<uint8_t> active_L, active_R;   ///< 1 = motor driven, 0 = free-wheeling
 
   explicit Inputs(int per_side = 0)
       : voltage_L(per_side, 0.0), voltage_R(per_side, 0.0), active_L(per_side, 0), active_R(per_side, 0) {}
@@ -53,9 +53,9 @@ struct Inputs {
 
 /// Per-side quantities at one instant (for diagnostics and the agents' current/efficiency).
 struct SideLoad {
-  double torque_Nm = 0.0;   ///< net shaft torque of the side's motors
-  double current_A = 0.0;   ///< total armature current drawn
-  double power_W = 0.0;     ///< electrical power drawn
+  double torque_Nm = 0.0;  ///< net shaft torque of the side's motors
+  double current_A = 0.0;  ///< total armature current drawn
+  double power_W = 0.0;    ///< electrical power drawn
   double joule_W = 0.0;
   double motor_loss_W = 0.0;  ///< motor friction + viscous dissipation
   double emf_loss_W = 0.0;
@@ -64,13 +64,21 @@ struct SideLoad {
 SideLoad side_load(const MotorParams& m, const std::vector<double>& voltage,
                    const std::vector<uint8_t>& active, double phidot_rad_s);
 
+/// Effective inertias of the robot with its N wheels (wheel inertia I_w seen at the body):
+///   m_eff = m + N I_w / r^2  [kg],   I_eff = I_zz + N I_w a^2 / (4 r^2)  [kg m^2].
+struct EffectiveInertia {
+  double mass_kg = 0.0;
+  double yaw_kgm2 = 0.0;
+};
+EffectiveInertia effective_inertia(const RobotParams& p);
+
 /// Rigid-body part of the dynamics for given net side torques (shared by the plant's
 /// derivative and by the Level-2 rollout, so both use one model).
 struct BodyForces {
-  double dv_x = 0.0;        ///< m/s^2
-  double dw = 0.0;          ///< rad/s^2
-  double f_rx = 0.0;        ///< N, longitudinal resistance
-  double m_r = 0.0;         ///< N m, resisting yaw moment
+  double dv_x = 0.0;           ///< m/s^2
+  double dw = 0.0;             ///< rad/s^2
+  double f_rx = 0.0;           ///< N, longitudinal resistance
+  double m_r = 0.0;            ///< N m, resisting yaw moment
   double ground_loss_W = 0.0;  ///< power dissipated by rolling and lateral friction
 };
 BodyForces body_forces(const RobotParams& p, double tau_L_Nm, double tau_R_Nm, double v_x, double w);

@@ -19,6 +19,14 @@ double active_torque(const MotorParams& m, double i, double phidot) {
 
 double inactive_torque(const MotorParams& m, double phidot) { return -m.viscous_Nms * phidot; }
 
+double side_torque(const MotorParams& m, double n, double n_side, double i, double phidot) {
+  return n * active_torque(m, i, phidot) + (n_side - n) * inactive_torque(m, phidot);
+}
+
+double torque_per_active(const MotorParams& m, double tau_side, double n, double n_side, double phidot) {
+  return (tau_side - (n_side - n) * inactive_torque(m, phidot)) / n;
+}
+
 double efficiency(const MotorParams& m, double v, double phidot) {
   const double i = armature_current(m, v, phidot);
   const double p_in = v * i;

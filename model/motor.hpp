@@ -1,5 +1,5 @@
 #pragma once
-// DC motor of one agent (paper eq. motor1, corrected: DESIGN "Motor", "Inactive motors").
+// DC motor of one agent (paper eq. motor1, corrected; docs/MODEL.md "Motor").
 //   active:   I_a = max(0, (V - K_e phidot) / Omega)          [A]   (driver does not regenerate)
 //             tau = K_T (I_a - I_0 sgn_s(phidot)) - b phidot   [N m] (K_T I_0 is friction)
 //   inactive: open circuit, I_a = 0, tau = -b phidot           [N m]
@@ -19,6 +19,17 @@ double active_torque(const MotorParams& m, double current_A, double phidot_rad_s
 
 /// Net shaft torque of an inactive (free-wheeling) motor, N m.
 double inactive_torque(const MotorParams& m, double phidot_rad_s);
+
+/// Net torque of a side whose n_active of n_side motors are active at current I each (the
+/// others inactive), all at speed phidot, N m; n_active may be real (the relaxed Level 2):
+///   tau_side = n_active active_torque(I, phidot) + (n_side - n_active) inactive_torque(phidot)
+double side_torque(const MotorParams& m, double n_active, double n_side, double current_A,
+                   double phidot_rad_s);
+
+/// Torque each of n_active active motors must give for the side's net torque to be
+/// tau_side_Nm (the inverse of side_torque in the active torque), N m.
+double torque_per_active(const MotorParams& m, double tau_side_Nm, double n_active, double n_side,
+                         double phidot_rad_s);
 
 /// Efficiency tau phidot / (V I) of an active motor; 0 when it draws no power or brakes.
 double efficiency(const MotorParams& m, double voltage_V, double phidot_rad_s);

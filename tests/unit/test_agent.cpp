@@ -1,19 +1,20 @@
-// Agent core (agent/agent_core.hpp): how a newly activated agent joins the running ones.
-// Every active agent of a side sees the same speed error, so any difference between their PID
-// integrators is permanent. A newcomer that joins with Pid::align at the side's last voltage has
-// the same PID state as the running agents and gives the same voltage at every later tick.
+// Agent core (control/level1/agent_core.hpp): how a newly activated agent joins the running
+// ones (every active agent of a side sees the same speed error, so any difference between their
+// PID integrators is permanent); what it does when its group or central falls silent.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
-#include "agent/agent_core.hpp"
-#include "model/pid.hpp"
+#include "control/level1/agent_core.hpp"
 
 namespace {
 
-using maptr::agent::AgentConfig;
-using maptr::agent::AgentCore;
-using maptr::agent::AgentInput;
+using maptr::control::AgentConfig;
+using maptr::control::AgentCore;
+using maptr::control::AgentInput;
+using maptr::control::AgentOutput;
+using maptr::control::AgentState;
 
 /// Tick k of a side cruising near its reference: phidot = ref - 2 cos(0.05 k) rad/s.
 AgentInput tick(long long k, bool assigned, double side_V) {
@@ -59,19 +60,79 @@ TEST(Agent, WithNoActiveAgentOnItsSideANewcomerStartsAtZeroCurrent) {
   EXPECT_NEAR(out.voltage_V, std::min(expected, in.battery_V), 1e-9);
 }
 
-TEST(Pid, AlignGivesTheSameOutputsAsTheRunningController) {
-  maptr::model::PidParams g;
-  maptr::model::Pid running(g), joining(g);
-  double e_prev = 0.0, v = 0.0;
-  for (int k = 0; k < 50; ++k) {
-    e_prev = 10.0 * std::cos(0.1 * k);
-    v = running.update(e_prev, 0.01, 1e9);
+/// Proportional-only agent (V = ref - phidot at phidot = 0: the voltage shows the reference).
+AgentConfig proportional() {
+  AgentConfig c;
+  c.pid.kp = 1.0;
+  c.pid.ki = 0.0;
+  c.pid.kd = 0.0;
+  return c;
+}
+
+/// Tick k at standstill with reference ref, the group's status from tick group_stamp and the
+/// central command from tick central_stamp; a battery far above the reference.
+AgentInput still(long long k, double ref, long long group_stamp, long long central_stamp) {
+  AgentInput in;
+  in.tick = k;
+  in.phidot_ref_rad_s = ref;
+  in.battery_V = 1000.0;
+  in.assigned = true;
+  in.group_stamp = group_stamp;
+  in.central_stamp = central_stamp;
+  return in;
+}
+
+TEST(Agent, AssignedDrivesAndUnassignedIsOpenCircuit) {
+  AgentCore a(proportional());
+  const AgentOutput on = a.step(still(1, 10.0, 0, 0));
+  EXPECT_EQ(on.state, AgentState::kActive);
+  EXPECT_NEAR(on.voltage_V, 10.0, 1e-12);
+  AgentInput off = still(2, 10.0, 1, 1);
+  off.assigned = false;
+  const AgentOutput out = a.step(off);
+  EXPECT_EQ(out.state, AgentState::kIdle);
+  EXPECT_EQ(out.voltage_V, 0.0);
+  EXPECT_FALSE(out.drives());
+}
+
+TEST(Agent, SilentGroupHoldsTheLastAssignmentThenCoasts) {
+  const AgentConfig c = proportional();  // group_hold_s = 1 s at dt = 10 ms
+  AgentCore a(c);
+  a.step(still(1, 10.0, 0, 0));
+  // The group's last status is from tick 0; central stays fresh.
+  const AgentOutput held = a.step(still(51, 10.0, 0, 50));  // group silent for 0.5 s
+  EXPECT_EQ(held.state, AgentState::kHolding);
+  EXPECT_NEAR(held.voltage_V, 10.0, 1e-12);
+  EXPECT_TRUE(held.drives());
+  const AgentOutput coast = a.step(still(151, 10.0, 0, 150));  // silent for 1.5 s
+  EXPECT_EQ(coast.state, AgentState::kCoasting);
+  EXPECT_EQ(coast.voltage_V, 0.0);
+  EXPECT_FALSE(coast.drives());
+  // The group is back: the agent obeys it again.
+  EXPECT_EQ(a.step(still(152, 10.0, 151, 151)).state, AgentState::kActive);
+}
+
+TEST(Agent, SilentCentralRampsTheReferenceToZeroAtTheStopDeceleration) {
+  const AgentConfig c = proportional();
+  AgentCore a(c);
+  const double ref = 20.0;
+  for (long long k = 1; k <= 10; ++k) a.step(still(k, ref, k - 1, k - 1));
+  // Central's last command is from tick 9; the timeout is 1 s = 100 ticks.
+  for (long long k = 11; k <= 110; ++k) {
+    const AgentOutput out = a.step(still(k, ref, k - 1, 9));
+    ASSERT_EQ(out.state, AgentState::kActive) << k;
+    ASSERT_NEAR(out.voltage_V, ref, 1e-12) << k;
   }
-  joining.align(v, e_prev);
-  for (int k = 50; k < 200; ++k) {
-    const double e = 10.0 * std::cos(0.1 * k);
-    EXPECT_NEAR(running.update(e, 0.01, 1e9), joining.update(e, 0.01, 1e9), 1e-12) << k;
+  // From then on the reference falls by stop_decel / r * dt per tick, to 0, and stays there.
+  const double step = c.stop_decel_mps2 / c.wheel_radius_m * c.dt_s;
+  double expected = ref;
+  for (long long k = 111; k <= 160; ++k) {
+    const AgentOutput out = a.step(still(k, ref, k - 1, 9));
+    expected = std::max(0.0, expected - step);
+    ASSERT_EQ(out.state, AgentState::kStopping) << k;
+    ASSERT_NEAR(out.voltage_V, expected, 1e-9) << k;
   }
+  EXPECT_EQ(expected, 0.0);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Level-3 allocation (model/allocation.hpp) against brute force over every subset.
+// Level-3 allocation (control/level3/allocation.hpp) against brute force over every subset.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "model/allocation.hpp"
+#include "control/level3/allocation.hpp"
 
 namespace {
 
-using maptr::model::AllocationInput;
-using maptr::model::allocate;
-using maptr::model::allocation_cost;
+using maptr::control::AllocationInput;
+using maptr::control::allocate;
+using maptr::control::allocation_cost;
 
 int count(const std::vector<uint8_t>& x) { return static_cast<int>(std::count(x.begin(), x.end(), 1)); }
 

@@ -15,15 +15,6 @@ constexpr double kH = -1.851e-14, kW = 0.005345, kY = 23.4, kZ = -1.018e-5;
 
 double by_hand(double d) { return kH * std::exp(kW * d) + kY * std::exp(kZ * d); }
 
-TEST(Battery, DefaultsAreThePapersFit) {
-  const BatteryParams b;
-  EXPECT_EQ(b.h, kH);
-  EXPECT_EQ(b.w, kW);
-  EXPECT_EQ(b.y, kY);
-  EXPECT_EQ(b.z, kZ);
-  EXPECT_EQ(b.capacity_mAh, 6395.0);
-}
-
 TEST(Battery, VoltageAgainstTheFormula) {
   const BatteryParams b;
   // d = 0: h + y = 23.4 - 1.851e-14 V; tolerance 1e-12 V.
@@ -31,7 +22,7 @@ TEST(Battery, VoltageAgainstTheFormula) {
   // Hand values (exponentials evaluated separately):
   //   d = 3000: -1.851e-14 e^{16.035} + 23.4 e^{-0.03054} = -1.7e-7 + 22.69617 = 22.696166 V
   //   d = 6000: -1.851e-14 e^{32.07}  + 23.4 e^{-0.06108} = -1.56758 + 22.01350 = 20.445920 V
-  //   d = 6395: -1.851e-14 e^{34.181} + 23.4 e^{-0.065101} = -12.94630 + 21.92516 = 8.978866 V  (DESIGN: "about 9 V")
+  //   d = 6395: -1.851e-14 e^{34.181} + 23.4 e^{-0.065101} = -12.94630 + 21.92516 = 8.978866 V
   // Tolerance 1e-6 V against the 7-digit hand values, 1e-12 relative against the formula.
   EXPECT_NEAR(battery_voltage(b, 3000.0), 22.696166, 1e-6);
   EXPECT_NEAR(battery_voltage(b, 6000.0), 20.445920, 1e-6);

@@ -245,6 +245,19 @@ TEST(Dynamics, EnergyBalanceWithAccelerationAndTurning) {
   record("energy_balance_max_rel_err", worst);
 }
 
+TEST(Dynamics, EffectiveInertiasAreTheOnesTheAccelerationsUse) {
+  // N = 16: m_eff = 13.2 + 16 * 0.5 * 0.05 = 13.6 kg, I_eff = 0.16064 kg m^2 (below).
+  mm::RobotParams p;
+  const mm::EffectiveInertia in = mm::effective_inertia(p);
+  EXPECT_NEAR(in.mass_kg, 13.6, 1e-12);
+  EXPECT_NEAR(in.yaw_kgm2, 0.16064, 1e-12);
+  // At rest (no resistance) a push of 1 N m per side gives dv/dt = (2/r) / m_eff, and a turn
+  // (-1, +1) N m gives dw/dt = (a/r) / I_eff.
+  const double r = p.wheel_radius_m, a = p.track_m;
+  EXPECT_NEAR(mm::body_forces(p, 1.0, 1.0, 0.0, 0.0).dv_x, (2.0 / r) / in.mass_kg, 1e-12);
+  EXPECT_NEAR(mm::body_forces(p, -1.0, 1.0, 0.0, 0.0).dw, (a / r) / in.yaw_kgm2, 1e-10);
+}
+
 TEST(Dynamics, KineticEnergyClosedForm) {
   // KE = (m + N I_w/r^2) v^2 / 2 + (I_zz + N I_w a^2 / (4 r^2)) w^2 / 2; N = 16: m_eff = 13.6 kg,
   // I_eff = 0.15664 + 16 * 3.0625e-5 * 0.04 / (4 * 0.001225) = 0.16064 kg m^2.

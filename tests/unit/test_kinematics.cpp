@@ -29,6 +29,17 @@ TEST(Kinematics, HandValues) {
   EXPECT_NEAR(b.w, 5.0, 1e-14);
 }
 
+TEST(Kinematics, WheelRatesAndTheirBodyVelocity) {
+  // a = 0.2 m, r = 0.05 m, v_x = 1 m/s, w = 2 rad/s: phidot = (1 -+ 0.2) / 0.05 = 16, 24 rad/s.
+  const mm::WheelRates q = mm::to_wheel_rates({1.0, 2.0}, 0.2, 0.05);
+  EXPECT_NEAR(q.phidot_L, 16.0, 1e-13);
+  EXPECT_NEAR(q.phidot_R, 24.0, 1e-13);
+  // Back: v_x = (16 + 24) 0.05 / 2 = 1 m/s, w = 0.05 (24 - 16) / 0.2 = 2 rad/s.
+  const mm::BodyVelocity b = mm::body_from_rates({16.0, 24.0}, 0.2, 0.05);
+  EXPECT_NEAR(b.v_x, 1.0, 1e-15);
+  EXPECT_NEAR(b.w, 2.0, 1e-14);
+}
+
 TEST(Kinematics, RoundTrip) {
   // to_body(to_wheels(x)) = x and to_wheels(to_body(s)) = s, to 1e-14 relative to the magnitudes.
   double worst = 0.0;

@@ -1,4 +1,4 @@
-// Level 2 (model/level2.hpp oracle and objective, group/core_level2.hpp Ipopt adapter).
+// Level 2 (control/level2/problem.hpp: objective and oracle; control/level2/solver.hpp: Ipopt).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,21 +6,21 @@
 #include <cstdio>
 #include <vector>
 
-#include "group/core_level2.hpp"
-#include "model/level2.hpp"
+#include "control/level2/solver.hpp"
+#include "control/level2/problem.hpp"
 #include "model/motor.hpp"
 
 namespace {
 
-using maptr::group::Level2Result;
-using maptr::group::Level2Solver;
-using maptr::model::exhaustive_level2;
-using maptr::model::feasibility_voltage;
-using maptr::model::horizon_efficiency;
-using maptr::model::level2_feasible;
-using maptr::model::Level2Choice;
-using maptr::model::Level2Problem;
-using maptr::model::required_voltage;
+using maptr::control::Level2Result;
+using maptr::control::Level2Solver;
+using maptr::control::exhaustive_level2;
+using maptr::control::feasibility_voltage;
+using maptr::control::horizon_efficiency;
+using maptr::control::level2_feasible;
+using maptr::control::Level2Choice;
+using maptr::control::Level2Problem;
+using maptr::control::required_voltage;
 
 /// Straight line at the reference speed (steady), left side, other side unknown (symmetric).
 Level2Problem straight(int agents, double mass_kg, double speed_m_s, double battery_V,
@@ -68,8 +68,6 @@ TEST(Level2Oracle, InfeasibleLoadRunsAllLiveAgents) {
   const Level2Result r = solver.solve(p);
   EXPECT_FALSE(r.feasible);
   EXPECT_EQ(r.n_active, 6);
-  std::printf("[ Level2 ] infeasible case: ipopt_status %d, %d iterations, %.2f ms\n", r.ipopt_status,
-              r.iterations, r.solve_time_ms);
 }
 
 TEST(Level2Model, RequiredVoltageClosedForm) {
@@ -117,8 +115,6 @@ TEST(Level2Model, EfficiencyBoundsAndPartialActivationPays) {
   EXPECT_LT(c.n_active, p.live);
   const double eta_opt = horizon_efficiency(p, c.n_active) / p.horizon;
   const double eta_all = horizon_efficiency(p, p.live) / p.horizon;
-  std::printf("[ Level2 ] 13.2 kg, 10 m/s, N=16: N_a=%d per side, eta %.3f vs %.3f with all %d\n", c.n_active,
-              eta_opt, eta_all, p.live);
   EXPECT_GT(eta_opt, eta_all + 0.05);
 }
 
@@ -134,7 +130,7 @@ TEST(Level2Model, TransientRolloutConvergesToSteadyState) {
 
 /// Ipopt's integer choice vs the oracle over loads, speeds, battery voltages, N and the start
 /// speed (at the reference, or 10 % below it: a transient). Fresh solver per case (cold start).
-void compare_on_grid(const maptr::group::Level2SolverConfig& config, const char* name) {
+void compare_on_grid(const maptr::control::Level2SolverConfig& config, const char* name) {
   int cases = 0, differ = 0, feasible_cases = 0, max_gap = 0;
   std::vector<double> times;
   for (int agents : {8, 16, 32, 64}) {
@@ -179,7 +175,7 @@ void compare_on_grid(const maptr::group::Level2SolverConfig& config, const char*
 TEST(Level2Solver, IpoptMatchesOracleOnGrid) { compare_on_grid({}, "fd hessian"); }
 
 TEST(Level2Solver, IpoptLimitedMemoryMatchesOracleOnGrid) {
-  maptr::group::Level2SolverConfig c;
+  maptr::control::Level2SolverConfig c;
   c.fd_hessian = false;
   compare_on_grid(c, "limited-memory");
 }
@@ -238,22 +234,6 @@ TEST(Level2Solver, WarmStartFollowsSlowlyChangingLoad) {
     EXPECT_EQ(differ, 0) << "of " << n;
     std::printf("[ Level2 ] warm-started, N %d: %d of %d differ, median solve %.2f ms\n", agents, differ, n,
                 median(times));
-  }
-}
-
-TEST(Level2Oracle, PaperLoadsTable) {
-  std::printf("[ Level2 ] oracle N_a per side, N = 16 (8 per side), V_B = 23.4 V, straight line\n");
-  std::printf("[ Level2 ]  gross kg |  10 m/s        |  20 m/s\n");
-  for (double m : {13.2, 18.2, 23.2, 28.2, 33.2, 38.2}) {
-    const Level2Choice a = exhaustive_level2(straight(16, m, 10.0, 23.4));
-    const Level2Choice b = exhaustive_level2(straight(16, m, 20.0, 23.4));
-    const Level2Problem pa = straight(16, m, 10.0, 23.4);
-    const Level2Problem pb = straight(16, m, 20.0, 23.4);
-    std::printf("[ Level2 ]  %8.1f | %d (eta %.3f)%s | %d (eta %.3f)%s V_req(all)=%.2f V\n", m, a.n_active,
-                horizon_efficiency(pa, a.n_active) / 10.0, a.feasible ? "" : " INF", b.n_active,
-                horizon_efficiency(pb, b.n_active) / 10.0, b.feasible ? "" : " INF",
-                feasibility_voltage(pb, pb.live));
-    EXPECT_TRUE(a.feasible);
   }
 }
 

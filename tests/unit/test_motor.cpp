@@ -195,4 +195,16 @@ TEST(Motor, VoltageForTorqueInvertsTheModel) {
   }
 }
 
+TEST(Motor, SideTorqueOfPartlyActiveSidesAndItsInverse) {
+  const MotorParams m = mm::motor_type("I");
+  const double w = 200.0, i = 0.4;
+  // All 8 active: 8 times one motor; none: 8 drags; 2.5 of 8 (relaxed): the mix.
+  EXPECT_NEAR(mm::side_torque(m, 8.0, 8.0, i, w), 8.0 * mm::active_torque(m, i, w), 1e-15);
+  EXPECT_NEAR(mm::side_torque(m, 0.0, 8.0, i, w), -8.0 * m.viscous_Nms * w, 1e-15);
+  const double mixed = mm::side_torque(m, 2.5, 8.0, i, w);
+  EXPECT_NEAR(mixed, 2.5 * mm::active_torque(m, i, w) - 5.5 * m.viscous_Nms * w, 1e-15);
+  // torque_per_active gives back the active motor's torque from the side's.
+  EXPECT_NEAR(mm::torque_per_active(m, mixed, 2.5, 8.0, w), mm::active_torque(m, i, w), 1e-15);
+}
+
 }  // namespace

@@ -1,14 +1,16 @@
-// Level-1 PID (model/pid.hpp): e = phidot_ref - phidot, V = K_P e + K_I E + K_D de/dt, clamped to [0, V_max].
+// Level-1 PID (control/level1/pid.hpp): e = phidot_ref - phidot, V = K_P e + K_I E + K_D de/dt, clamped to
+// [0, V_max].
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
+#include "control/level1/pid.hpp"
 #include "model/params.hpp"
-#include "model/pid.hpp"
 
 namespace {
 
-using maptr::model::Pid;
+using maptr::control::Pid;
 using maptr::model::PidParams;
 
 PidParams gains(double kp, double ki, double kd) {
@@ -17,13 +19,6 @@ PidParams gains(double kp, double ki, double kd) {
   g.ki = ki;
   g.kd = kd;
   return g;
-}
-
-TEST(Pid, DefaultGainsAreTheDocumentedOnes) {
-  const PidParams g;
-  EXPECT_EQ(g.kp, 0.5);
-  EXPECT_EQ(g.ki, 2.0);
-  EXPECT_EQ(g.kd, 0.0);
 }
 
 TEST(Pid, ProportionalOnly) {
@@ -39,7 +34,7 @@ TEST(Pid, ClampsToZeroAndVmax) {
   Pid pid(gains(0.5, 0.0, 0.0));
   EXPECT_DOUBLE_EQ(pid.update(100.0, 0.01, 24.0), 24.0);  // 50 V wanted
   EXPECT_TRUE(pid.saturated());
-  EXPECT_DOUBLE_EQ(pid.update(100.0, 0.01, 9.0), 9.0);  // V_max follows the battery voltage
+  EXPECT_DOUBLE_EQ(pid.update(100.0, 0.01, 9.0), 9.0);   // V_max follows the battery voltage
   EXPECT_DOUBLE_EQ(pid.update(-10.0, 0.01, 24.0), 0.0);  // no reversing: never below 0
   EXPECT_TRUE(pid.saturated());
   EXPECT_DOUBLE_EQ(pid.update(10.0, 0.01, 24.0), 5.0);
@@ -109,6 +104,21 @@ TEST(Pid, PreloadGivesTheRequestedOutputAtZeroError) {
   Pid pid(gains(0.5, 2.0, 0.0));
   pid.preload(30.0);
   EXPECT_DOUBLE_EQ(pid.update(0.0, 0.01, 24.0), 24.0);
+}
+
+TEST(Pid, AlignGivesTheSameOutputsAsTheRunningController) {
+  PidParams g;
+  Pid running(g), joining(g);
+  double e_prev = 0.0, v = 0.0;
+  for (int k = 0; k < 50; ++k) {
+    e_prev = 10.0 * std::cos(0.1 * k);
+    v = running.update(e_prev, 0.01, 1e9);
+  }
+  joining.align(v, e_prev);
+  for (int k = 50; k < 200; ++k) {
+    const double e = 10.0 * std::cos(0.1 * k);
+    EXPECT_NEAR(running.update(e, 0.01, 1e9), joining.update(e, 0.01, 1e9), 1e-12) << k;
+  }
 }
 
 }  // namespace

@@ -16,14 +16,14 @@
 #include <cstdint>
 #include <vector>
 
-namespace maptr::model {
+namespace maptr::control {
 
 struct AllocationInput {
-  std::vector<double> distance_m;        ///< D_j, m driven while active (un-normalised)
-  std::vector<uint8_t> live;             ///< 1 = agent alive
-  std::vector<double> active_time_s;     ///< continuous active time so far, s (may be empty)
-  double thermal_limit_s = 600.0;        ///< T_max of continuous operation, s
-  int n_active = 0;                      ///< N_a wanted
+  std::vector<double> distance_m;     ///< D_j, m driven while active (un-normalised)
+  std::vector<uint8_t> live;          ///< 1 = agent alive
+  std::vector<double> active_time_s;  ///< continuous active time so far, s (may be empty)
+  double thermal_limit_s = 600.0;     ///< T_max of continuous operation, s
+  int n_active = 0;                   ///< N_a wanted
 };
 
 /// Returns the activation mask (1 = active). Takes min(n_active, live count) agents.
@@ -32,4 +32,4 @@ std::vector<uint8_t> allocate(const AllocationInput& in);
 /// Objective (D - D_ref)^T x with D normalised to sum 1 (all-zero D gives D = 0).
 double allocation_cost(const std::vector<double>& distance_m, const std::vector<uint8_t>& x);
 
-}  // namespace maptr::model
+}  // namespace maptr::control

@@ -1,8 +1,8 @@
-#include "model/pid.hpp"
+#include "control/level1/pid.hpp"
 
 #include <algorithm>
 
-namespace maptr::model {
+namespace maptr::control {
 
 double Pid::update(double e, double dt, double v_max) {
   if (!(dt > 0.0)) return 0.0;  // no time passed: no valid control step (never NaN)
@@ -38,4 +38,4 @@ void Pid::preload(double out) {
   if (g_.ki > 0.0) integral_ = out / g_.ki;
 }
 
-}  // namespace maptr::model
+}  // namespace maptr::control

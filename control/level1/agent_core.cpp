@@ -1,11 +1,11 @@
-#include "agent/agent_core.hpp"
+#include "control/level1/agent_core.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "model/motor.hpp"
 
-namespace maptr::agent {
+namespace maptr::control {
 
 AgentCore::AgentCore(AgentConfig c) : c_(c), pid_(c.pid) {}
 
@@ -61,4 +61,4 @@ AgentOutput AgentCore::step(const AgentInput& in) {
   return out;
 }
 
-}  // namespace maptr::agent
+}  // namespace maptr::control

@@ -6,11 +6,11 @@
 // into saturation. Explicit time: the caller passes dt; no clock is read.
 #include "model/params.hpp"
 
-namespace maptr::model {
+namespace maptr::control {
 
 class Pid {
  public:
-  explicit Pid(PidParams g = {}) : g_(g) {}
+  explicit Pid(model::PidParams g = {}) : g_(g) {}
 
   /// One control step; returns the clamped voltage, V.
   double update(double error_rad_s, double dt_s, double v_max_V);
@@ -26,11 +26,11 @@ class Pid {
   bool saturated() const { return saturated_; }
 
  private:
-  PidParams g_;
-  double integral_ = 0.0;   ///< rad
-  double prev_error_ = 0.0; ///< rad/s
+  model::PidParams g_;
+  double integral_ = 0.0;    ///< rad
+  double prev_error_ = 0.0;  ///< rad/s
   bool first_ = true;
   bool saturated_ = false;
 };
 
-}  // namespace maptr::model
+}  // namespace maptr::control

@@ -1,14 +1,36 @@
-#include "model/level2.hpp"
+#include "control/level2/problem.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "model/dynamics.hpp"
+#include "model/kinematics.hpp"
 #include "model/motor.hpp"
 
-namespace maptr::model {
+namespace maptr::control {
 namespace {
+
+using model::armature_current;
+using model::body_forces;
+using model::body_from_rates;
+using model::BodyForces;
+using model::BodyVelocity;
+using model::effective_inertia;
+using model::EffectiveInertia;
+using model::efficiency;
+using model::MotorParams;
+using model::param_value;
+using model::ParamError;
+using model::RobotParams;
+using model::side_torque;
+using model::to_wheel_rates;
+using model::torque_per_active;
+using model::voltage_for_torque;
+using model::WheelRates;
+
+/// Substeps per horizon step: ceil(step_s / substep_s), a ratio this close above an integer
+/// counting as that integer.
+constexpr double kSubstepSlack = 1e-9;
 
 void require(bool ok, const std::string& field, double value, const std::string& why) {
   if (!ok) throw ParamError("level2." + field + " = " + param_value(value) + ": " + why);
@@ -25,32 +47,24 @@ double soft_clamp(double x, double lo, double hi, double eps) {
   return hi - eps * softplus((hi - above_lo) / eps);
 }
 
-/// Effective inertias, obtained from body_forces() itself (its accelerations are affine in
-/// the side torques), so the rollout and the plant cannot disagree:
-///   m_eff = m + N I_w / r^2,  I_eff = I_zz + N I_w a^2 / (4 r^2).
-struct Inertia {
-  double m_eff = 0.0;  ///< kg
-  double i_eff = 0.0;  ///< kg m^2
-};
-
-Inertia effective_inertia(const RobotParams& rb) {
-  const double r = rb.wheel_radius_m, a = rb.track_m;
-  const BodyForces zero = body_forces(rb, 0.0, 0.0, 0.0, 0.0);
-  const BodyForces push = body_forces(rb, 1.0, 1.0, 0.0, 0.0);   // (tau_L + tau_R)/r = 2/r
-  const BodyForces turn = body_forces(rb, -1.0, 1.0, 0.0, 0.0);  // (a/2)(tau_R - tau_L)/r = a/r
-  Inertia in;
-  in.m_eff = (2.0 / r) / (push.dv_x - zero.dv_x);
-  in.i_eff = (a / r) / (turn.dw - zero.dw);
-  return in;
+/// One classical RK4 step of length dt on (v, w), accel(v, w) giving (dv/dt, dw/dt).
+template <typename Accel>
+void rk4_step(const Accel& accel, double dt, double& v, double& w) {
+  const BodyVelocity k1 = accel(v, w);
+  const BodyVelocity k2 = accel(v + 0.5 * dt * k1.v_x, w + 0.5 * dt * k1.w);
+  const BodyVelocity k3 = accel(v + 0.5 * dt * k2.v_x, w + 0.5 * dt * k2.w);
+  const BodyVelocity k4 = accel(v + dt * k3.v_x, w + dt * k3.w);
+  v += dt / 6.0 * (k1.v_x + 2.0 * k2.v_x + 2.0 * k3.v_x + k4.v_x);
+  w += dt / 6.0 * (k1.w + 2.0 * k2.w + 2.0 * k3.w + k4.w);
 }
 
 /// Net side torques (N m) that make the body accelerate by (a_v, a_w) at state (v, w).
-void needed_side_torques(const RobotParams& rb, const Inertia& in, double v, double w, double a_v, double a_w,
-                         double& tau_l, double& tau_r) {
+void needed_side_torques(const RobotParams& rb, const EffectiveInertia& in, double v, double w, double a_v,
+                         double a_w, double& tau_l, double& tau_r) {
   const double r = rb.wheel_radius_m, a = rb.track_m;
   const BodyForces f = body_forces(rb, 0.0, 0.0, v, w);  // resistances only
-  const double sum = r * (in.m_eff * a_v + f.f_rx);
-  const double diff = (2.0 * r / a) * (in.i_eff * a_w + f.m_r);
+  const double sum = r * (in.mass_kg * a_v + f.f_rx);
+  const double diff = (2.0 * r / a) * (in.yaw_kgm2 * a_w + f.m_r);
   tau_l = 0.5 * (sum - diff);
   tau_r = 0.5 * (sum + diff);
 }
@@ -58,17 +72,14 @@ void needed_side_torques(const RobotParams& rb, const Inertia& in, double v, dou
 /// Per-motor voltage the speed loop applies on a side with n active of n_side, V.
 double loop_voltage(const Level2Problem& p, double tau_side_needed, double n, double phidot) {
   const MotorParams& m = p.robot.motor;
-  const double n_side = p.robot.per_side();
-  const double tau_a = (tau_side_needed - (n_side - n) * inactive_torque(m, phidot)) / n;
+  const double tau_a = torque_per_active(m, tau_side_needed, n, p.robot.per_side(), phidot);
   return soft_clamp(voltage_for_torque(m, tau_a, phidot), 0.0, p.battery_V, p.clamp_smoothing_V);
 }
 
 /// Net side torque with n active motors at voltage V each, N m.
-double side_torque(const Level2Problem& p, double n, double voltage, double phidot) {
+double side_torque_at(const Level2Problem& p, double n, double voltage, double phidot) {
   const MotorParams& m = p.robot.motor;
-  const double n_side = p.robot.per_side();
-  const double i_a = armature_current(m, voltage, phidot);
-  return n * active_torque(m, i_a, phidot) + (n_side - n) * inactive_torque(m, phidot);
+  return side_torque(m, n, p.robot.per_side(), armature_current(m, voltage, phidot), phidot);
 }
 
 }  // namespace
@@ -100,14 +111,12 @@ void Level2Problem::validate() const {
 
 double horizon_efficiency(const Level2Problem& p, double n) {
   const RobotParams& rb = p.robot;
-  const MotorParams& mp = rb.motor;
   const double r = rb.wheel_radius_m, a = rb.track_m;
-  const Inertia in = effective_inertia(rb);
+  const EffectiveInertia in = effective_inertia(rb);
   const double n_l = p.side == 0 ? n : (p.n_other > 0.0 ? p.n_other : n);
   const double n_r = p.side == 1 ? n : (p.n_other > 0.0 ? p.n_other : n);
-  const double v_ref = 0.5 * r * (p.phidot_ref_L + p.phidot_ref_R);
-  const double w_ref = r * (p.phidot_ref_R - p.phidot_ref_L) / a;
-  const int substeps = std::max(1, static_cast<int>(std::ceil(p.step_s / p.substep_s - 1e-9)));
+  const BodyVelocity ref = body_from_rates({p.phidot_ref_L, p.phidot_ref_R}, a, r);
+  const int substeps = std::max(1, static_cast<int>(std::ceil(p.step_s / p.substep_s - kSubstepSlack)));
   const double dt = p.step_s / substeps;
 
   double v = p.v_x, w = p.w, total = 0.0;
@@ -115,29 +124,23 @@ double horizon_efficiency(const Level2Problem& p, double n) {
     double eta_sum = 0.0;
     for (int s = 0; s < substeps; ++s) {
       // Speed loop: voltages from the state at the substep start, held over the substep.
-      const double ph_l = (v - 0.5 * a * w) / r, ph_r = (v + 0.5 * a * w) / r;
+      const WheelRates ph = to_wheel_rates({v, w}, a, r);
       double need_l = 0.0, need_r = 0.0;
-      needed_side_torques(rb, in, v, w, (v_ref - v) / p.approach_time_s, (w_ref - w) / p.approach_time_s,
+      needed_side_torques(rb, in, v, w, (ref.v_x - v) / p.approach_time_s, (ref.w - w) / p.approach_time_s,
                           need_l, need_r);
-      const double volt_l = loop_voltage(p, need_l, n_l, ph_l);
-      const double volt_r = loop_voltage(p, need_r, n_r, ph_r);
-      eta_sum += p.side == 0 ? efficiency(mp, volt_l, ph_l) : efficiency(mp, volt_r, ph_r);
+      const double volt_l = loop_voltage(p, need_l, n_l, ph.phidot_L);
+      const double volt_r = loop_voltage(p, need_r, n_r, ph.phidot_R);
+      eta_sum +=
+          p.side == 0 ? efficiency(rb.motor, volt_l, ph.phidot_L) : efficiency(rb.motor, volt_r, ph.phidot_R);
 
-      // RK4 on (v_x, w) with the voltages held; the currents follow the wheel speeds.
-      auto deriv = [&](double vv, double ww, double& dv, double& dw) {
-        const double pl = (vv - 0.5 * a * ww) / r, pr = (vv + 0.5 * a * ww) / r;
-        const BodyForces b =
-            body_forces(rb, side_torque(p, n_l, volt_l, pl), side_torque(p, n_r, volt_r, pr), vv, ww);
-        dv = b.dv_x;
-        dw = b.dw;
+      // The currents follow the wheel speeds inside the substep; the voltages are held.
+      auto accel = [&](double vv, double ww) {
+        const WheelRates q = to_wheel_rates({vv, ww}, a, r);
+        const BodyForces b = body_forces(rb, side_torque_at(p, n_l, volt_l, q.phidot_L),
+                                         side_torque_at(p, n_r, volt_r, q.phidot_R), vv, ww);
+        return BodyVelocity{b.dv_x, b.dw};
       };
-      double k1v, k1w, k2v, k2w, k3v, k3w, k4v, k4w;
-      deriv(v, w, k1v, k1w);
-      deriv(v + 0.5 * dt * k1v, w + 0.5 * dt * k1w, k2v, k2w);
-      deriv(v + 0.5 * dt * k2v, w + 0.5 * dt * k2w, k3v, k3w);
-      deriv(v + dt * k3v, w + dt * k3w, k4v, k4w);
-      v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-      w += dt / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w);
+      rk4_step(accel, dt, v, w);
     }
     total += eta_sum / substeps;
   }
@@ -152,12 +155,12 @@ double required_voltage(const Level2Problem& p, double n, double speed_scale) {
   const RobotParams& rb = p.robot;
   const double r = rb.wheel_radius_m, a = rb.track_m;
   const double ph_l = speed_scale * p.phidot_ref_L, ph_r = speed_scale * p.phidot_ref_R;
-  const double v = 0.5 * r * (ph_l + ph_r), w = r * (ph_r - ph_l) / a;
+  const BodyVelocity b = body_from_rates({ph_l, ph_r}, a, r);
   double need_l = 0.0, need_r = 0.0;
-  needed_side_torques(rb, effective_inertia(rb), v, w, 0.0, 0.0, need_l, need_r);
+  needed_side_torques(rb, effective_inertia(rb), b.v_x, b.w, 0.0, 0.0, need_l, need_r);
   const double need = p.side == 0 ? need_l : need_r;
   const double phidot = p.side == 0 ? ph_l : ph_r;
-  const double tau_a = (need - (rb.per_side() - n) * inactive_torque(rb.motor, phidot)) / n;
+  const double tau_a = torque_per_active(rb.motor, need, n, rb.per_side(), phidot);
   return voltage_for_torque(rb.motor, tau_a, phidot);
 }
 
@@ -189,4 +192,4 @@ Level2Choice exhaustive_level2(const Level2Problem& p) {
   return best;
 }
 
-}  // namespace maptr::model
+}  // namespace maptr::control

@@ -1,14 +1,15 @@
-#include "model/allocation.hpp"
+#include "control/level3/allocation.hpp"
 
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
 
-namespace maptr::model {
+namespace maptr::control {
 
 std::vector<uint8_t> allocate(const AllocationInput& in) {
   const std::size_t n = in.live.size();
-  if (in.distance_m.size() != n) throw std::invalid_argument("allocate: distance_m and live differ in length");
+  if (in.distance_m.size() != n)
+    throw std::invalid_argument("allocate: distance_m and live differ in length");
   std::vector<std::size_t> cool, hot;
   for (std::size_t j = 0; j < n; ++j) {
     if (!in.live[j]) continue;
@@ -37,4 +38,4 @@ double allocation_cost(const std::vector<double>& d, const std::vector<uint8_t>&
   return c;
 }
 
-}  // namespace maptr::model
+}  // namespace maptr::control

@@ -1,4 +1,4 @@
-#include "group/core_level2.hpp"
+#include "control/level2/solver.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,20 +8,23 @@
 #include <coin/IpTNLP.hpp>
 #include <vector>
 
-namespace maptr::group {
+namespace maptr::control {
 namespace {
 
 using Ipopt::Index;
 using Ipopt::Number;
 
-constexpr double kFdStep = 1e-5;        ///< agents, central finite-difference step
-constexpr double kFdHessStep = 1e-3;    ///< agents, second-difference step (noise / h^2 ~ 1e-8)
-constexpr double kIntegerWiden = 1e-3;  ///< agents, see the header ("Integer choice")
+constexpr double kFdStep = 1e-5;      ///< agents, central finite-difference step
+constexpr double kFdHessStep = 1e-3;  ///< agents, second-difference step (noise / h^2 ~ 1e-8)
+/// Constraint lower bound that Ipopt reads as none (below its nlp_lower_bound_inf, -1e19).
+constexpr double kNoLowerBound = -2e19;
+constexpr double kIntegerWiden =
+    1e-3;  ///< agents: a relaxed n* this close to an integer brings in both neighbours
 
 /// The relaxed Level-2 NLP: one variable n, one constraint g(n) = feasibility_voltage(n).
 class Level2Nlp : public Ipopt::TNLP {
  public:
-  Level2Nlp(const model::Level2Problem& p, double start, bool fd_hessian)
+  Level2Nlp(const Level2Problem& p, double start, bool fd_hessian)
       : p_(p), start_(start), x_(start), fd_hessian_(fd_hessian) {}
 
   double x() const { return x_; }
@@ -39,7 +42,7 @@ class Level2Nlp : public Ipopt::TNLP {
   bool get_bounds_info(Index, Number* x_l, Number* x_u, Index, Number* g_l, Number* g_u) override {
     x_l[0] = 1.0;
     x_u[0] = static_cast<double>(p_.live);
-    g_l[0] = -2e19;  // no lower bound (Ipopt's default nlp_lower_bound_inf is -1e19)
+    g_l[0] = kNoLowerBound;
     g_u[0] = p_.battery_V;
     return true;
   }
@@ -52,18 +55,18 @@ class Level2Nlp : public Ipopt::TNLP {
   }
 
   bool eval_f(Index, const Number* x, bool, Number& obj) override {
-    obj = -model::level2_objective(p_, x[0]);
+    obj = -level2_objective(p_, x[0]);
     return std::isfinite(obj);
   }
 
   bool eval_grad_f(Index, const Number* x, bool, Number* grad) override {
     const double h = kFdStep;
-    grad[0] = -(model::level2_objective(p_, x[0] + h) - model::level2_objective(p_, x[0] - h)) / (2.0 * h);
+    grad[0] = -(level2_objective(p_, x[0] + h) - level2_objective(p_, x[0] - h)) / (2.0 * h);
     return std::isfinite(grad[0]);
   }
 
   bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
-    g[0] = model::feasibility_voltage(p_, x[0]);
+    g[0] = feasibility_voltage(p_, x[0]);
     return std::isfinite(g[0]);
   }
 
@@ -75,8 +78,7 @@ class Level2Nlp : public Ipopt::TNLP {
       return true;
     }
     const double h = kFdStep;
-    values[0] =
-        (model::feasibility_voltage(p_, x[0] + h) - model::feasibility_voltage(p_, x[0] - h)) / (2.0 * h);
+    values[0] = (feasibility_voltage(p_, x[0] + h) - feasibility_voltage(p_, x[0] - h)) / (2.0 * h);
     return std::isfinite(values[0]);
   }
 
@@ -90,11 +92,11 @@ class Level2Nlp : public Ipopt::TNLP {
       return true;
     }
     const double h = kFdHessStep, x0 = x[0];
-    const double j2 = (model::level2_objective(p_, x0 + h) - 2.0 * model::level2_objective(p_, x0) +
-                       model::level2_objective(p_, x0 - h)) /
-                      (h * h);
-    const double g2 = (model::feasibility_voltage(p_, x0 + h) - 2.0 * model::feasibility_voltage(p_, x0) +
-                       model::feasibility_voltage(p_, x0 - h)) /
+    const double j2 =
+        (level2_objective(p_, x0 + h) - 2.0 * level2_objective(p_, x0) + level2_objective(p_, x0 - h)) /
+        (h * h);
+    const double g2 = (feasibility_voltage(p_, x0 + h) - 2.0 * feasibility_voltage(p_, x0) +
+                       feasibility_voltage(p_, x0 - h)) /
                       (h * h);
     values[0] = -obj_factor * j2 + lambda[0] * g2;
     return std::isfinite(values[0]);
@@ -107,7 +109,7 @@ class Level2Nlp : public Ipopt::TNLP {
   }
 
  private:
-  const model::Level2Problem& p_;
+  const Level2Problem& p_;
   double start_;
   double x_;
   bool fd_hessian_;
@@ -140,17 +142,13 @@ Level2Solver::Level2Solver(Level2SolverConfig config) : impl_(std::make_unique<I
   o->SetNumericValue("tol", config.tol);
   o->SetStringValue("hessian_approximation", config.fd_hessian ? "exact" : "limited-memory");
   o->SetIntegerValue("max_iter", config.max_iter);
-  // With limited-memory Ipopt defaults to the adaptive barrier update, whose quality-function
-  // oracle costs several extra MUMPS solves per iteration; monotone is cheaper here.
-  o->SetStringValue("mu_strategy", "monotone");
+  o->SetStringValue("mu_strategy", "monotone");  // cheaper than adaptive here (BENCHMARKS.md)
   impl_->init_ok = impl_->app->Initialize("") == Ipopt::Solve_Succeeded;  // "": no ipopt.opt file
 }
 
 Level2Solver::~Level2Solver() = default;
 
-void Level2Solver::reset_warm_start() { impl_->has_warm = false; }
-
-Level2Result Level2Solver::solve(const model::Level2Problem& p) {
+Level2Result Level2Solver::solve(const Level2Problem& p) {
   const auto t0 = std::chrono::steady_clock::now();
   Level2Result res;
   const int live = p.live;
@@ -158,8 +156,8 @@ Level2Result Level2Solver::solve(const model::Level2Problem& p) {
   if (live <= 1) {
     res.n_active = std::max(live, 0);
     res.n_relaxed = res.n_active;
-    res.feasible = live == 1 && model::level2_feasible(p, 1.0);
-    res.objective = live == 1 ? model::level2_objective(p, 1.0) : 0.0;
+    res.feasible = live == 1 && level2_feasible(p, 1.0);
+    res.objective = live == 1 ? level2_objective(p, 1.0) : 0.0;
     res.ipopt_status = kLevel2NotSolved;
   } else {
     const double lo = 1.0, hi = live;
@@ -181,8 +179,8 @@ Level2Result Level2Solver::solve(const model::Level2Problem& p) {
     const int k_lo = std::max(1, static_cast<int>(std::floor(x - kIntegerWiden)));
     const int k_hi = std::min(live, static_cast<int>(std::ceil(x + kIntegerWiden)));
     for (int k = k_lo; k <= k_hi; ++k) {
-      if (!model::level2_feasible(p, k)) continue;
-      const double j = model::level2_objective(p, k);
+      if (!level2_feasible(p, k)) continue;
+      const double j = level2_objective(p, k);
       if (!found || j > res.objective) {  // strict: ties keep the smaller n
         res.n_active = k;
         res.objective = j;
@@ -195,8 +193,8 @@ Level2Result Level2Solver::solve(const model::Level2Problem& p) {
       impl_->has_warm = true;
     } else {
       res.n_active = live;
-      res.feasible = model::level2_feasible(p, live);
-      res.objective = model::level2_objective(p, live);
+      res.feasible = level2_feasible(p, live);
+      res.objective = level2_objective(p, live);
     }
   }
 
@@ -205,4 +203,4 @@ Level2Result Level2Solver::solve(const model::Level2Problem& p) {
   return res;
 }
 
-}  // namespace maptr::group
+}  // namespace maptr::control

@@ -1,0 +1,131 @@
+#include "control/group_core.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "control/level2/problem.hpp"
+#include "control/level3/allocation.hpp"
+
+namespace maptr::control {
+
+namespace {
+/// s: a period counts as elapsed this close to its end (tick times carry rounding).
+constexpr double kTimeSlackS = 1e-9;
+
+int count(const std::vector<uint8_t>& m) { return static_cast<int>(std::count(m.begin(), m.end(), 1)); }
+}  // namespace
+
+GroupCore::GroupCore(int side, const GroupConfig& config, std::string ledger_path)
+    : side_(side), c_(config), ledger_path_(std::move(ledger_path)), ledger_(config.robot.per_side()) {
+  if (!ledger_path_.empty()) resumed_ = ledger_.load(ledger_path_, config.robot.per_side());
+}
+
+void GroupCore::save() const {
+  if (!ledger_path_.empty()) ledger_.save(ledger_path_);
+}
+
+bool GroupCore::update_cruise(const GroupInput& in) {
+  const double ref = side_ == 0 ? in.phidot_ref_L : in.phidot_ref_R;
+  const double err = ref > 0.0 ? std::fabs(in.phidot_side - ref) / ref : 1.0;
+  if (err <= c_.cruise_enter) cruise_ = true;
+  if (err > c_.cruise_leave) cruise_ = false;
+  return cruise_;
+}
+
+void GroupCore::solve_level2(const GroupInput& in, GroupDecision& d, int& target) {
+  Level2Problem p;
+  p.robot = c_.robot;
+  p.side = side_;
+  p.live = d.n_live;
+  p.n_other = in.n_other;
+  p.v_x = in.v_x;
+  p.w = in.w;
+  p.phidot_ref_L = in.phidot_ref_L;
+  p.phidot_ref_R = in.phidot_ref_R;
+  p.battery_V = in.battery_V;
+  p.horizon = c_.horizon;
+  p.step_s = c_.horizon_step_s;
+  if (p.live <= 0) {
+    target = 0;
+    d.level2_status = kL2Infeasible;
+    return;
+  }
+  const Level2Result r = solver_.solve(p);
+  d.level2_relaxed = r.n_relaxed;
+  d.level2_ran = true;
+  d.ipopt_n_active = r.n_active;
+  d.solve_time_ms = r.solve_time_ms;
+  d.level2_status = !r.feasible ? kL2Infeasible : r.ipopt_status >= 0 ? kL2Ok : kL2Failed;
+  target = r.feasible ? r.n_active : d.n_live;
+  if (c_.oracle) d.oracle_n_active = exhaustive_level2(p).n_active;
+}
+
+int GroupCore::decide_count(const GroupInput& in, bool cruising, GroupDecision& d, bool& realloc,
+                            const std::vector<uint8_t>& next) {
+  int target = ledger_.n_target;
+  if (!cruising) {
+    // Accelerating, braking or recovering: every live agent helps.
+    target = d.n_live;
+    realloc = next != in.live;
+    last_l2_t_ = kNeverS;  // decide as soon as cruise is reached
+  } else if (in.t - last_l2_t_ >= c_.level2_period_s - kTimeSlackS) {
+    last_l2_t_ = in.t;
+    solve_level2(in, d, target);
+    ++ledger_.decisions;
+  }
+  return std::min(target, d.n_live);
+}
+
+GroupDecision GroupCore::step(const GroupInput& in) {
+  const int n = c_.robot.per_side();
+  // The assignment in force over [t_{k-1}, t_k] drove |v_side| dt each.
+  if (ledger_.last_t >= 0.0 && in.t > ledger_.last_t) {
+    const double dt = in.t - ledger_.last_t;
+    ledger_.accrue(in.active, std::fabs(in.phidot_side) * c_.robot.wheel_radius_m * dt, dt);
+  }
+  ledger_.last_t = in.t;
+
+  GroupDecision d = last_;  // the last solve's diagnostics stay on the status topic
+  d.level2_ran = false;
+  d.n_live = count(in.live);
+  std::vector<uint8_t> next = ledger_.assignment;
+  for (int j = 0; j < n; ++j)
+    if (!in.live[j]) next[j] = 0;
+
+  if (c_.mode == GroupMode::kAll) {
+    next = in.live;
+    d.level2_status = kL2None;
+  } else {
+    bool realloc = false;
+    const int target = decide_count(in, update_cruise(in), d, realloc, next);
+    bool overheated = false;
+    for (int j = 0; j < n; ++j)
+      if (next[j] && ledger_.active_time_s[j] >= c_.thermal_limit_s) overheated = true;
+    realloc = realloc || target != ledger_.n_target || count(next) != target || overheated ||
+              in.t - ledger_.last_alloc_t >= c_.t_on_s - kTimeSlackS;
+    ledger_.n_target = target;
+    if (realloc) {
+      AllocationInput ai;
+      ai.distance_m = ledger_.wear_m;
+      ai.live = in.live;
+      ai.active_time_s = ledger_.active_time_s;
+      ai.thermal_limit_s = c_.thermal_limit_s;
+      ai.n_active = target;
+      next = allocate(ai);
+      ledger_.last_alloc_t = in.t;
+      ++ledger_.reallocations;
+    }
+  }
+  const bool changed = next != ledger_.assignment;
+  ledger_.assignment = next;
+  d.active = next;
+  d.n_active = count(next);
+  d.decisions = ledger_.decisions;
+  d.reallocations = ledger_.reallocations;
+  last_ = d;
+  const long long period_ticks = std::max(1LL, std::llround(c_.level2_period_s / c_.dt_s));
+  if (changed || in.tick % period_ticks == 0) save();
+  return d;
+}
+
+}  // namespace maptr::control

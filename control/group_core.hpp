@@ -1,0 +1,95 @@
+#pragma once
+// Group controller of one side: which of its agents run from the next tick.
+//   mode all (the paper's NO): every live agent is active.
+//   mode ec (energy-conscious):
+//     - while the side's wheel speed is far from its reference (relative error above
+//       cruise_leave, until it is back within cruise_enter) every live agent runs;
+//     - in cruise, Level 2 (Level2Solver) chooses the count N_a every level2_period_s [s];
+//     - Level 3 (allocate() on the wear Ledger) chooses which agents every t_on_s [s], whenever
+//       N_a or the number of active agents changes, and when an active agent reaches the
+//       thermal limit thermal_limit_s [s] of continuous operation.
+// The ledger is saved (if a path is given) on every change of the assignment and once per
+// Level-2 period, and loaded at construction: a restarted controller resumes it.
+// Pure: explicit time (GroupInput::t), no DDS, no clock (except the solver's diagnostic timing).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "control/level2/solver.hpp"
+#include "control/level3/ledger.hpp"
+#include "model/params.hpp"
+
+namespace maptr::control {
+
+enum class GroupMode { kAll, kEnergyConscious };
+
+/// Level-2 outcome reported with a decision (same values as the msg::L2_* constants).
+enum Level2Status : uint8_t { kL2None = 0, kL2Ok = 1, kL2Infeasible = 2, kL2Failed = 3 };
+
+struct GroupConfig {
+  model::RobotParams robot;
+  GroupMode mode = GroupMode::kEnergyConscious;
+  double dt_s = 0.01;              ///< tick period, s
+  double level2_period_s = 1.0;    ///< s between Level-2 decisions in cruise
+  int horizon = 10;                ///< Level-2 horizon, steps
+  double horizon_step_s = 0.1;     ///< Level-2 horizon step, s
+  double t_on_s = 100.0;           ///< Level-3 period T_ON, s
+  double thermal_limit_s = 600.0;  ///< max continuous active time of an agent, s
+  bool oracle = false;             ///< also solve by exhaustive search and report its choice
+  double cruise_enter = 0.05;      ///< relative speed error at or below which cruise starts
+  double cruise_leave = 0.20;      ///< relative speed error above which cruise ends
+};
+
+/// What the group reads from one tick.
+struct GroupInput {
+  long long tick = 0;
+  double t = 0.0;                                 ///< s
+  double v_x = 0.0, w = 0.0;                      ///< m/s, rad/s: body state at t
+  double phidot_side = 0.0;                       ///< rad/s, this side's wheels
+  double phidot_ref_L = 0.0, phidot_ref_R = 0.0;  ///< rad/s, references in force
+  double battery_V = 0.0;                         ///< V, this side
+  std::vector<uint8_t> live;                      ///< membership of this side (from the plant)
+  std::vector<uint8_t> active;                    ///< assignment in force over [t_{k-1}, t_k]
+  int n_other = 0;                                ///< other side's active count, relayed by central
+};
+
+struct GroupDecision {
+  std::vector<uint8_t> active;  ///< assignment from tick k+1
+  int n_active = 0, n_live = 0;
+  uint8_t level2_status = kL2None;  ///< Level2Status
+  double level2_relaxed = 0.0;      ///< the solver's relaxed N_a
+  int oracle_n_active = -1;         ///< exhaustive search's N_a (-1: not run)
+  double solve_time_ms = 0.0;
+  bool level2_ran = false;  ///< a Level-2 decision was taken at this tick
+  int ipopt_n_active = -1;  ///< the solver's integer choice (before the feasibility fallback)
+  uint64_t decisions = 0, reallocations = 0;
+};
+
+class GroupCore {
+ public:
+  /// side 0 = left, 1 = right; ledger_path "" keeps the ledger in memory only.
+  GroupCore(int side, const GroupConfig& config, std::string ledger_path);
+  GroupDecision step(const GroupInput& in);
+  const Ledger& ledger() const { return ledger_; }
+  bool resumed() const { return resumed_; }
+  void save() const;
+
+ private:
+  bool update_cruise(const GroupInput& in);
+  /// Runs Level 2 if in cruise and due; returns the wanted N_a; fills d's Level-2 fields.
+  int decide_count(const GroupInput& in, bool cruising, GroupDecision& d, bool& realloc,
+                   const std::vector<uint8_t>& next);
+  void solve_level2(const GroupInput& in, GroupDecision& d, int& target);
+
+  int side_;
+  GroupConfig c_;
+  std::string ledger_path_;
+  Ledger ledger_;
+  Level2Solver solver_;
+  bool resumed_ = false;
+  double last_l2_t_ = kNeverS;
+  bool cruise_ = false;
+  GroupDecision last_;
+};
+
+}  // namespace maptr::control

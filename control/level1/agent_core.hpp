@@ -1,0 +1,70 @@
+#pragma once
+// Level 1 of one agent (wheel-motor pair): from the tick the plant published, the voltage
+// [V] to apply over [t_k, t_k+1]. Explicit time (ticks of dt_s), no DDS, no clock.
+//   assigned by its group    -> PID on e = phidot_ref - phidot [rad/s], clamped to [0, V_B]
+//   becoming active          -> the PID joins the side's running PIDs (Pid::align to the mean
+//                               voltage they applied last tick), so the side's agents share the
+//                               load evenly; with none active it starts at the back-EMF
+//                               (zero current)
+//   not assigned             -> open circuit (0 V, PID reset)
+//   group silent (its status older than one tick): hold the last assignment for group_hold_s,
+//                               then coast (open circuit)
+//   central silent longer than central_timeout_s: ramp the last reference to zero at
+//                               stop_decel_mps2 / r [rad/s^2] (a safe stop), still obeying the group
+#include <cstdint>
+
+#include "control/level1/pid.hpp"
+#include "model/params.hpp"
+
+namespace maptr::control {
+
+enum class AgentState : uint8_t { kIdle = 0, kActive = 1, kHolding = 2, kCoasting = 3, kStopping = 4 };
+
+struct AgentConfig {
+  model::MotorParams motor;
+  model::PidParams pid;
+  double wheel_radius_m = 0.035;   ///< r, m
+  double dt_s = 0.01;              ///< tick period, s
+  double group_hold_s = 1.0;       ///< s a silent group's last assignment is held
+  double central_timeout_s = 1.0;  ///< s of silence from central before the safe stop
+  double stop_decel_mps2 = 2.0;    ///< deceleration of the safe stop, m/s^2
+};
+
+/// What an agent reads from one tick (its own side's values).
+struct AgentInput {
+  long long tick = 0;
+  double phidot_rad_s = 0.0;      ///< its wheel's speed
+  double battery_V = 0.0;         ///< its group's battery voltage
+  double side_active_V = 0.0;     ///< mean voltage its side's active agents applied last tick, 0 if none
+  double phidot_ref_rad_s = 0.0;  ///< reference in force
+  long long central_stamp = -1;   ///< tick of the central command in force
+  bool assigned = false;          ///< its bit in the group's active mask
+  long long group_stamp = -1;     ///< tick of the group status in force
+};
+
+struct AgentOutput {
+  double voltage_V = 0.0;
+  double current_A = 0.0;
+  double efficiency = 0.0;
+  AgentState state = AgentState::kIdle;
+  bool drives() const {
+    return state == AgentState::kActive || state == AgentState::kHolding || state == AgentState::kStopping;
+  }
+};
+
+class AgentCore {
+ public:
+  explicit AgentCore(AgentConfig c);
+  AgentOutput step(const AgentInput& in);
+
+ private:
+  AgentConfig c_;
+  Pid pid_;
+  bool last_assigned_ = false;
+  bool was_driving_ = false;
+  double stop_ref_ = 0.0;    ///< reference while stopping, rad/s
+  double prev_error_ = 0.0;  ///< last tick's speed error, rad/s (tracked while idle too)
+  bool has_prev_error_ = false;
+};
+
+}  // namespace maptr::control
