@@ -48,8 +48,10 @@ CsvFile CsvFile::parse(const std::string& text, const std::string& what) {
   std::string line;
   if (!std::getline(in, line)) return f;
   f.header_ = split_fields(line);
-  while (std::getline(in, line))
+  while (std::getline(in, line)) {
+    if (in.eof()) break;  // no newline after it: a write that was interrupted
     if (!line.empty()) f.rows_.push_back(split_fields(line));
+  }
   return f;
 }
 

@@ -36,7 +36,8 @@ std::vector<std::string> split_fields(const std::string& line);
 class CsvFile {
  public:
   /// Reads `path`; `what` names the file in errors (e.g. "trace.csv"). An empty file has no
-  /// header and no rows. Throws RecordError when the file cannot be opened.
+  /// header and no rows. A last line without its newline (a writer killed mid-line) is not
+  /// read. Throws RecordError when the file cannot be opened.
   static CsvFile read(const std::string& path, const std::string& what);
   /// Parses text (the file's whole content).
   static CsvFile parse(const std::string& text, const std::string& what);

@@ -170,6 +170,14 @@ TEST(TraceRecord, MalformedNumberNamesLineAndColumn) {
   }
 }
 
+TEST(TraceRecord, AnInterruptedLastLineIsNotRead) {
+  std::string row = "7,0.07";
+  for (std::size_t i = 2; i < trace_columns().size(); ++i) row += ",1";
+  const auto rows = parse_trace(trace_header() + row + "\n" + "8,0.08,1.2");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].tick, 7);
+}
+
 TEST(Level2Log, LinesAreWhatAStreamWrites) {
   Level2Record r{12.5, 8, 3, 1, 2.71828182, 3, -1, 4, 0.123456789};
   std::ostringstream expected;  // the group controller's stream output of the same values
