@@ -1,5 +1,6 @@
 #include "records/summary.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <limits>
 
@@ -42,6 +43,11 @@ bool Summary::has_status() const {
 std::string Summary::status() const { return has_status() ? j_[k::kStatus].get<std::string>() : ""; }
 
 double Summary::number(const char* key) const { return number_in(j_, key); }
+
+double Summary::number_or(const char* key, double fallback) const {
+  const double v = number_in(j_, key);
+  return std::isnan(v) ? fallback : v;
+}
 
 int Summary::active_agents(const char* side) const {
   if (!j_.contains(k::kActiveAgents)) return -1;

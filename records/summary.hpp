@@ -68,8 +68,9 @@ class Summary {
 
   const nlohmann::json& data() const { return j_; }
   bool has_status() const;
-  std::string status() const;            ///< "" when absent
-  double number(const char* key) const;  ///< a top-level number; NaN when absent
+  std::string status() const;                                ///< "" when absent
+  double number(const char* key) const;                      ///< a top-level number; NaN when absent
+  double number_or(const char* key, double fallback) const;  ///< a top-level number or `fallback`
   double sim_time_s() const { return number(summary_key::kSimTime); }
   double wall_time_s() const { return number(summary_key::kWallTime); }
   double real_time_factor() const { return number(summary_key::kRealTimeFactor); }

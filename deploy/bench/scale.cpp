@@ -104,8 +104,8 @@ json measure(const BenchOptions& o, int n) {
       launch_isolated({s, run_dir, o.bin_dir, o.domain, run_dir + "/maptr.out"},
                       [&](const std::atomic<bool>& done) { mem = sample_memory(run_dir, done); }));
   const double cpu = cpu_seconds(RUSAGE_CHILDREN) - cpu0;
-  const auto& j = sum.data();
-  const double sim = j.value("sim_time_s", 0.0), wall = j.value("wall_time_s", 0.0);
+  const double sim = sum.number_or(records::summary_key::kSimTime, 0),
+               wall = sum.number_or(records::summary_key::kWallTime, 0);
   const std::string status = sum.status();
   const records::TickTiming tick = sum.tick_timing("tick");
   const long pss_max =
@@ -114,9 +114,9 @@ json measure(const BenchOptions& o, int n) {
           {"status", status.substr(0, status.find(':'))},
           {"status_full", status},
           {"status_text", status.size() > kStatusMdChars ? status.substr(0, kStatusMdChars) + "..." : status},
-          {"discovery_s", j.value("discovery_s", 0.0)},
-          {"ticks_per_wall_s", wall > 0 ? j.value("ticks", 0) / wall : 0.0},
-          {"real_time_factor", j.value("real_time_factor", 0.0)},
+          {"discovery_s", sum.number_or(records::summary_key::kDiscovery, 0)},
+          {"ticks_per_wall_s", wall > 0 ? sum.number_or(records::summary_key::kTicks, 0) / wall : 0.0},
+          {"real_time_factor", sum.number_or(records::summary_key::kRealTimeFactor, 0)},
           {"cpu_s_per_sim_s", sim > 0 ? cpu / sim : 0.0},
           {"pss_agent_median_kB", median(mem.agent_pss_kB)},
           {"pss_agent_median_MB", median(mem.agent_pss_kB) / kKiB},

@@ -47,7 +47,8 @@ int bench_tick(const BenchOptions& o) {
   const records::Summary sum(launch_isolated({s, run_dir, o.bin_dir, o.domain, ""}));
   std::ostringstream md;
   md << "Lock-step tick, N = " << n << ", " << o.duration_s << " s simulated at 100 Hz ("
-     << sum.data().value("ticks", 0) << " ticks), status " << sum.status() << "\n\n"
+     << static_cast<long long>(sum.number_or(records::summary_key::kTicks, 0)) << " ticks), status "
+     << sum.status() << "\n\n"
      << timing_md(sum);
   std::filesystem::create_directories(o.out);
   report::write_file(o.out + "/tick.md", md.str());

@@ -88,8 +88,8 @@ Run Experiment::run(const std::string& id, const std::string& label, config::Sce
   if (r.aborted()) any_aborted_ = true;
   if (st.find("interrupted") != std::string::npos || stop_requested()) interrupted_ = true;
   std::fprintf(stderr, "maptr: %s %s %s: %.0f s simulated in %.0f s, status %s%s\n", head, o_.name.c_str(),
-               label.c_str(), r.summary.data().value("sim_time_s", 0.0),
-               r.summary.data().value("wall_time_s", 0.0), st.c_str(),
+               label.c_str(), r.summary.number_or(records::summary_key::kSimTime, 0),
+               r.summary.number_or(records::summary_key::kWallTime, 0), st.c_str(),
                r.reused ? " (reused: this scenario already ran in this folder)" : "");
   runs_.push_back(r);
   return r;
@@ -102,8 +102,8 @@ std::string Experiment::runs_md() const {
   for (const auto& r : runs_)
     md << "| " << r.label << " | " << r.status() << (r.reused ? " (reused)" : "")
        << (r.retried ? " (second attempt; the first: " + r.first_attempt + ")" : "") << " | "
-       << fixed(r.summary.data().value("sim_time_s", 0.0), 1) << " | "
-       << fixed(r.summary.data().value("wall_time_s", 0.0), 0) << " | runs/" << r.id << " |\n";
+       << fixed(r.summary.number_or(records::summary_key::kSimTime, 0), 1) << " | "
+       << fixed(r.summary.number_or(records::summary_key::kWallTime, 0), 0) << " | runs/" << r.id << " |\n";
   return md.str();
 }
 
@@ -116,9 +116,9 @@ json Experiment::runs_json() const {
                     {"status", r.status()},
                     {"reused", r.reused},
                     {"retried", r.retried},
-                    {"sim_time_s", r.summary.data().value("sim_time_s", 0.0)},
-                    {"wall_time_s", r.summary.data().value("wall_time_s", 0.0)},
-                    {"real_time_factor", r.summary.data().value("real_time_factor", 0.0)}});
+                    {"sim_time_s", r.summary.number_or(records::summary_key::kSimTime, 0)},
+                    {"wall_time_s", r.summary.number_or(records::summary_key::kWallTime, 0)},
+                    {"real_time_factor", r.summary.number_or(records::summary_key::kRealTimeFactor, 0)}});
   return runs;
 }
 
