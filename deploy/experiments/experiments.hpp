@@ -7,13 +7,13 @@
 namespace maptr::deploy {
 
 struct ExperimentOptions {
-  std::string name;          ///< table-pow | weights | voltages | agents | battery | wear | failures
-  bool quick = false;        ///< the short variant used by the test suite
-  std::string out;           ///< output folder (created)
-  std::string bin_dir;       ///< where maptr_plant & co. are
-  std::string source_dir;    ///< project source (deploy/scenarios/default.yaml)
-  int domain = 0;            ///< DDS domain id for every run
-  double tick_hz = 0;        ///< Level-1 / plant tick rate; 0: the experiment's default
+  std::string name;        ///< table-pow | weights | voltages | agents | battery | wear | failures
+  bool quick = false;      ///< the short variant used by the test suite
+  std::string out;         ///< output folder (created)
+  std::string bin_dir;     ///< where maptr_plant & co. are
+  std::string source_dir;  ///< project source (deploy/scenarios/default.yaml)
+  int domain = 0;          ///< DDS domain id for every run
+  double tick_hz = 0;      ///< Level-1 / plant tick rate; 0: the experiment's default
 };
 
 /// The tick rate an experiment runs at unless told otherwise: 100 Hz (the scenario default) for

@@ -1,0 +1,21 @@
+#include "deploy/bench/bench.hpp"
+
+#include <iostream>
+
+#include "deploy/bench/bench_parts.hpp"
+
+namespace maptr::deploy {
+
+int run_bench(const BenchOptions& o) {
+  try {
+    if (o.what == "scale") return bench_scale(o);
+    if (o.what == "tick") return bench_tick(o);
+  } catch (const std::exception& e) {
+    std::cerr << "maptr: bench " << o.what << ": " << e.what() << "\n";
+    return 1;
+  }
+  std::cerr << "maptr: bench " << o.what << ": unknown (scale, tick)\n";
+  return 2;
+}
+
+}  // namespace maptr::deploy

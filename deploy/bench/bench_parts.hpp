@@ -1,0 +1,14 @@
+#pragma once
+// The two benches of `maptr bench`, each on its own fleets (launched in child processes).
+#include "config/scenario.hpp"
+#include "deploy/bench/bench.hpp"
+
+namespace maptr::deploy {
+
+/// `maptr bench scale`: one fleet per size in o.agents; scale.csv, scale.md, scale.png.
+int bench_scale(const BenchOptions& o);
+
+/// `maptr bench tick`: one fleet; the plant's tick timing as tick.md and tick.json.
+int bench_tick(const BenchOptions& o);
+
+}  // namespace maptr::deploy

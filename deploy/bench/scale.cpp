@@ -1,0 +1,170 @@
+// `maptr bench scale`: discovery time, real-time factor, CPU and memory against the number of
+// agents, one fleet per size (each in a child process: a fleet that fails at a size is recorded,
+// not fatal to the bench).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "deploy/bench/bench_parts.hpp"
+#include "deploy/bench/memory.hpp"
+#include "deploy/experiments/isolated_launch.hpp"
+#include "deploy/report/gnuplot.hpp"
+#include "deploy/report/table.hpp"
+#include "records/summary.hpp"
+
+namespace maptr::deploy {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+constexpr double kScaleSpeed = 10.0;  ///< m/s
+constexpr int kScaleTraceEvery = 10;  ///< trace rows
+constexpr std::size_t kStatusMdChars = 70;
+constexpr double kKiB = 1024.0;
+
+/// The columns of scale.csv (kB, µs) and of scale.md (MB, ms).
+std::vector<report::Column> columns() {
+  return {{"agents", "N", 0},
+          {"status", "status", -1, false, true},
+          {"status_text", "status", -1, true, false},
+          {"discovery_s", "discovery s", 2},
+          {"ticks_per_wall_s", "ticks / wall s", 1},
+          {"real_time_factor", "RTF (100 Hz)", 2},
+          {"cpu_s_per_sim_s", "CPU s / sim s", 2},
+          {"pss_agent_median_kB", "", 0, false, true},
+          {"pss_agent_median_MB", "PSS agent median MB", 1, true, false},
+          {"pss_agent_max_kB", "", 0, false, true},
+          {"pss_agent_max_MB", "PSS agent max MB", 1, true, false},
+          {"pss_total_kB", "", 0, false, true},
+          {"pss_total_MB", "PSS total MB", 0, true, false},
+          {"samples_per_tick", "DDS samples / tick", 0},
+          {"tick_median_us", "", 0, false, true},
+          {"tick_median_ms", "tick median ms", 2, true, false},
+          {"tick_p99_us", "", 0, false, true},
+          {"tick_p99_ms", "tick p99 ms", 2, true, false}};
+}
+
+/// The plots of scale.png, by column name.
+std::string plot_body() {
+  const std::string f = "scale.csv";
+  std::string rtf = report::plot_command({{f, "agents", "real_time_factor", "linespoints", "RTF", ""}});
+  rtf.pop_back();
+  return "set key autotitle columnhead\n"
+         "set multiplot layout 2,2 title 'MAPTR scale-up on this machine (lock-step, EC mode)'\n"
+         "set logscale x 2\nset grid\nset xlabel 'agent processes N'\n"
+         "set ylabel 'seconds'\nset title 'launch to all matched'\n" +
+         report::plot_command({{f, "agents", "discovery_s", "linespoints", "all processes matched", ""}}) +
+         "set ylabel 'simulated s per wall s'\nset title 'real-time factor at 100 Hz (log scale)'\nset "
+         "logscale y\n" +
+         rtf + ", 1 with lines dt 2 title 'real time'\n" +
+         "set ylabel 'CPU s per simulated s'\nset title 'CPU cost (log scale)'\n" +
+         report::plot_command({{f, "agents", "cpu_s_per_sim_s", "linespoints", "all processes", ""}}) +
+         "unset logscale y\nset ylabel 'MB'\nset title 'proportional memory (PSS) per agent process'\n"
+         "set yrange [0:14]\n"
+         "plot 'scale.csv' using \"agents\":(column(\"pss_agent_median_kB\")/1024) with linespoints title "
+         "'median', "
+         "'' using \"agents\":(column(\"pss_agent_max_kB\")/1024) with linespoints title 'max', "
+         "12 with lines dt 2 title 'target 12 MB'\n"
+         "unset multiplot\n";
+}
+
+void plot(const std::string& dir) {
+  report::draw_plot(dir, "scale",
+                    "made by `maptr bench scale`; redraw with `maptr bench scale --replot --out DIR`",
+                    report::PlotFrame{"1100,800", ""}, plot_body());
+}
+
+/// The default scenario with n agents, every moving segment at kScaleSpeed, the last one
+/// stretched to the bench's duration.
+config::Scenario scale_scenario(const BenchOptions& o, int n) {
+  config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/default.yaml");
+  s.robot.agents = n;
+  s.duration_s = o.duration_s;
+  s.trace_every = kScaleTraceEvery;
+  for (auto& seg : s.trajectory.segments)
+    if (seg.type != "stop") seg.speed_mps = kScaleSpeed;
+  if (s.trajectory.total_duration() < s.duration_s)
+    s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
+  s.validate();
+  return s;
+}
+
+/// One fleet size: its row of the table.
+json measure(const BenchOptions& o, int n) {
+  const std::string run_dir = o.out + "/runs/N" + std::to_string(n);
+  const config::Scenario s = scale_scenario(o, n);
+  FleetMemory mem;
+  const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
+  const records::Summary sum(
+      launch_isolated({s, run_dir, o.bin_dir, o.domain, run_dir + "/maptr.out"},
+                      [&](const std::atomic<bool>& done) { mem = sample_memory(run_dir, done); }));
+  const double cpu = cpu_seconds(RUSAGE_CHILDREN) - cpu0;
+  const double sim = sum.number_or(records::summary_key::kSimTime, 0),
+               wall = sum.number_or(records::summary_key::kWallTime, 0);
+  const std::string status = sum.status();
+  const records::TickTiming tick = sum.tick_timing("tick");
+  const long pss_max =
+      mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
+  return {{"agents", n},
+          {"status", status.substr(0, status.find(':'))},
+          {"status_full", status},
+          {"status_text", status.size() > kStatusMdChars ? status.substr(0, kStatusMdChars) + "..." : status},
+          {"discovery_s", sum.number_or(records::summary_key::kDiscovery, 0)},
+          {"ticks_per_wall_s", wall > 0 ? sum.number_or(records::summary_key::kTicks, 0) / wall : 0.0},
+          {"real_time_factor", sum.number_or(records::summary_key::kRealTimeFactor, 0)},
+          {"cpu_s_per_sim_s", sim > 0 ? cpu / sim : 0.0},
+          {"pss_agent_median_kB", median(mem.agent_pss_kB)},
+          {"pss_agent_median_MB", median(mem.agent_pss_kB) / kKiB},
+          {"pss_agent_max_kB", pss_max},
+          {"pss_agent_max_MB", pss_max / kKiB},
+          {"pss_total_kB", mem.total_pss_kB},
+          {"pss_total_MB", mem.total_pss_kB / kKiB},
+          {"samples_per_tick", n + 4},  // one PlantTick, N AgentReply, 2 GroupStatus, 1 CentralCommand
+          {"tick_median_us", tick.median},
+          {"tick_median_ms", tick.median / 1000.0},
+          {"tick_p99_us", tick.p99},
+          {"tick_p99_ms", tick.p99 / 1000.0}};
+}
+
+int replot(const BenchOptions& o) {
+  if (!fs::exists(o.out + "/scale.csv")) {
+    std::cerr << "maptr: bench scale --replot: no " << o.out << "/scale.csv\n";
+    return 2;
+  }
+  plot(o.out);
+  std::cerr << "maptr: redrew " << o.out << "/scale.png\n";
+  return 0;
+}
+
+}  // namespace
+
+int bench_scale(const BenchOptions& o) {
+  if (o.replot) return replot(o);
+  fs::create_directories(o.out);
+  report::Table t;
+  t.cols = columns();
+  std::ofstream csv(o.out + "/scale.csv");
+  csv << t.csv_header() << std::flush;
+  int worst = 0;
+  for (int n : o.agents) {
+    std::cerr << "maptr: bench scale N=" << n << " ..." << std::flush;
+    const json row = measure(o, n);
+    csv << t.csv_row(row) << std::flush;  // a later size that fails leaves the earlier rows
+    t.rows.push_back(row);
+    const std::string status = row["status_full"];
+    std::cerr << " " << status << ", discovery " << row["discovery_s"].get<double>() << " s, RTF "
+              << row["real_time_factor"].get<double>() << "\n";
+    if (status != "ok") worst = 1;
+  }
+  report::write_file(o.out + "/scale.md", t.md());
+  plot(o.out);
+  std::cout << t.md() << "results: " << o.out << "/scale.csv, scale.md, scale.png\n";
+  return worst;
+}
+
+}  // namespace maptr::deploy

@@ -1,0 +1,60 @@
+// `maptr bench tick`: where the time of one lock-step tick goes (publish, barrier, integrate).
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "deploy/bench/bench_parts.hpp"
+#include "deploy/experiments/isolated_launch.hpp"
+#include "deploy/report/table.hpp"
+#include "records/summary.hpp"
+
+namespace maptr::deploy {
+
+namespace {
+/// Speed of the tick bench's straight line, m/s.
+constexpr double kTickSpeed = 10.0;
+
+std::string timing_md(const records::Summary& sum) {
+  report::Table t;
+  t.cols = {{"part", "part", -1}, {"median", "median µs", 0}, {"p90", "p90 µs", 0}, {"p99", "p99 µs", 0}};
+  const std::pair<const char*, const char*> parts[] = {
+      {"publish", "plant publishes PlantTick k (write returns)"},
+      {"first_reply", "first agent reply after the write returned"},
+      {"barrier", "write returned -> every live agent, group and central answered"},
+      {"integrate", "CVODE over [t_k, t_k+1] + trace row"},
+      {"tick", "whole tick"}};
+  for (const auto& [key, what] : parts) {
+    const records::TickTiming tt = sum.tick_timing(key);
+    if (!tt.present) continue;
+    t.rows.push_back({{"part", std::string(key) + " (" + what + ")"},
+                      {"median", tt.median},
+                      {"p90", tt.p90},
+                      {"p99", tt.p99}});
+  }
+  return t.md();
+}
+}  // namespace
+
+int bench_tick(const BenchOptions& o) {
+  const int n = o.agents.size() == 1 ? o.agents.front() : 16;
+  config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/default.yaml");
+  s.robot.agents = n;
+  s.duration_s = o.duration_s;
+  s.trajectory.segments = {config::Segment{"straight", kTickSpeed, 0.0, o.duration_s}};
+  s.name = "tick-" + std::to_string(n);
+  s.validate();
+  const std::string run_dir = o.out + "/runs/tick-N" + std::to_string(n);
+  const records::Summary sum(launch_isolated({s, run_dir, o.bin_dir, o.domain, ""}));
+  std::ostringstream md;
+  md << "Lock-step tick, N = " << n << ", " << o.duration_s << " s simulated at 100 Hz ("
+     << static_cast<long long>(sum.number_or(records::summary_key::kTicks, 0)) << " ticks), status "
+     << sum.status() << "\n\n"
+     << timing_md(sum);
+  std::filesystem::create_directories(o.out);
+  report::write_file(o.out + "/tick.md", md.str());
+  report::write_file(o.out + "/tick.json", sum.tick_timing_json().dump(2) + "\n");
+  std::cout << md.str() << "results: " << o.out << "/tick.md, tick.json\n";
+  return sum.status() == "ok" ? 0 : 1;
+}
+
+}  // namespace maptr::deploy

@@ -1,0 +1,52 @@
+#include "deploy/cli/fleet_signal.hpp"
+
+#include <filesystem>
+#include <iostream>
+
+#include "deploy/launcher.hpp"
+
+namespace maptr::deploy::cli {
+
+namespace fs = std::filesystem;
+
+CLI::App* add_signal_command(CLI::App& app, const std::string& action, SignalArgs& a) {
+  const std::string what = action == "kill"
+                               ? "SIGKILL a process of a running fleet (e.g. L3, group-R, central)"
+                               : "start a killed process of a running fleet again";
+  auto* c = app.add_subcommand(action, what);
+  c->add_option("target", a.target, "process name")->required();
+  c->add_option("--run", a.run_dir, "run folder (default: the newest running one under runs/)");
+  return c;
+}
+
+std::string latest_live_run() {
+  std::string best;
+  fs::file_time_type best_t{};
+  std::error_code ec;
+  if (!fs::exists("runs", ec)) return "";
+  for (const auto& d : fs::directory_iterator("runs", ec)) {
+    const fs::path fifo = d.path() / "control";
+    if (!fs::is_fifo(fifo, ec)) continue;
+    const auto t = fs::last_write_time(d.path(), ec);
+    if (best.empty() || t > best_t) best = d.path().string(), best_t = t;
+  }
+  return best;
+}
+
+int cmd_signal(const std::string& action, const SignalArgs& a) {
+  const std::string run_dir = a.run_dir.empty() ? latest_live_run() : a.run_dir;
+  if (run_dir.empty()) {
+    std::cerr << "maptr: no running fleet found under runs/ (give its folder with --run DIR)\n";
+    return 2;
+  }
+  try {
+    send_command(run_dir, action, a.target);
+  } catch (const std::exception& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << "maptr: sent '" << action << " " << a.target << "' to the fleet in " << run_dir << "\n";
+  return 0;
+}
+
+}  // namespace maptr::deploy::cli

@@ -1,0 +1,152 @@
+#include "deploy/cli/run_command.hpp"
+
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "deploy/cli/paths.hpp"
+#include "deploy/faults.hpp"
+#include "deploy/launcher.hpp"
+#include "model/params.hpp"
+
+namespace maptr::deploy::cli {
+
+using config::Scenario;
+using config::ScenarioError;
+
+namespace {
+
+/// Exit codes of `maptr run`.
+constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitDegraded = 3;
+
+void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::string& action) {
+  for (const auto& spec : specs) {
+    const auto at = spec.find('@');
+    if (at == std::string::npos)
+      throw ScenarioError("--" + action + " " + spec + ": expected TARGET@SECONDS, e.g. L3@120");
+    config::FaultSpec f;
+    f.target = spec.substr(0, at);
+    f.action = action;
+    try {
+      f.at_s = std::stod(spec.substr(at + 1));
+    } catch (...) {
+      throw ScenarioError("--" + action + " " + spec + ": time '" + spec.substr(at + 1) +
+                          "' is not a number");
+    }
+    s.faults.push_back(f);
+  }
+}
+
+/// The scenario of `maptr run`, validated, with the --external names checked.
+Scenario checked_scenario(const RunArgs& a) {
+  Scenario s = scenario_from(a);
+  s.validate();
+  for (const auto& name : a.external) {
+    int side = 0, idx = 0;
+    if (!config::parse_agent_name(name, side, idx) || idx >= s.robot.per_side())
+      throw ScenarioError("--external " + name + ": not an agent of this scenario (L0..L" +
+                          std::to_string(s.robot.per_side() - 1) + ", R0..)");
+  }
+  return s;
+}
+
+std::shared_ptr<spdlog::logger> launcher_log(const std::string& run_dir) {
+  std::filesystem::create_directories(run_dir + "/logs");
+  auto log = std::make_shared<spdlog::logger>(
+      "launcher", std::make_shared<spdlog::sinks::basic_file_sink_mt>(run_dir + "/logs/launcher.log"));
+  log->flush_on(spdlog::level::info);
+  return log;
+}
+
+}  // namespace
+
+CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
+  auto* run =
+      app.add_subcommand("run", "launch the fleet (plant, central, 2 groups, N agents) for one scenario");
+  run->add_option("scenario", a.scenario, "scenario YAML (default: deploy/scenarios/default.yaml)");
+  run->add_option("--agents", a.agents, "number of agents N (multiple of 4)");
+  run->add_option("--gross-kg", a.gross_kg, "gross mass, kg");
+  run->add_option("--motor", a.motor, "motor type I or II");
+  run->add_option("--mode", a.mode, "all (every agent, the paper's NO) or ec (energy-conscious)");
+  run->add_option("--duration", a.duration, "simulated seconds");
+  run->add_option("--speed", a.speed, "speed of every moving segment, m/s");
+  run->add_flag("--realtime", a.realtime, "pace ticks to the wall clock");
+  run->add_option("--out", a.out, "results folder (default runs/<date>-<scenario>)");
+  run->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
+      ->check(CLI::Range(0, kMaxDomain));
+  run->add_option("--trace-every", a.trace_every, "write every n-th tick to trace.csv");
+  run->add_option("--tick-hz", a.tick_hz,
+                  "Level-1 control and plant tick rate, Hz (default: the scenario's, 100)");
+  run->add_option("--kill", a.kills, "kill a process at a simulated time, e.g. L3@120 (repeatable)");
+  run->add_option("--restart", a.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
+  run->add_option("--chaos", a.chaos,
+                  "random kills and restarts of agents and controllers, reproducible from SEED");
+  run->add_option("--external", a.external, "an agent you start yourself (the launcher prints the command)");
+  run->add_option("--transport", a.transport, "data transport: shm, udp or auto (shm up to 64 agents)")
+      ->check(CLI::IsMember({"auto", "shm", "udp"}));
+  run->add_flag("--quiet", a.quiet, "no progress lines");
+  return run;
+}
+
+Scenario scenario_from(const RunArgs& a) {
+  Scenario s = config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
+  if (a.agents) s.robot.agents = a.agents;
+  if (a.gross_kg) s.robot.gross_mass_kg = a.gross_kg;
+  if (!a.motor.empty()) s.robot.motor = model::motor_type(a.motor);
+  if (!a.mode.empty()) s.mode = a.mode;
+  if (a.duration) s.duration_s = a.duration;
+  if (a.realtime) s.realtime = true;
+  if (a.trace_every) s.trace_every = a.trace_every;
+  if (a.tick_hz) s.tick_hz = a.tick_hz;
+  if (a.speed >= 0)
+    for (auto& seg : s.trajectory.segments)
+      if (seg.type != "stop") seg.speed_mps = a.speed;
+  if (a.duration && s.trajectory.total_duration() < s.duration_s)
+    s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
+  add_faults(s, a.kills, "kill");
+  add_faults(s, a.restarts, "restart");
+  if (a.chaos >= 0)
+    for (const auto& f : chaos_schedule(static_cast<unsigned>(a.chaos), s)) s.faults.push_back(f);
+  return s;
+}
+
+int cmd_run(const RunArgs& a, const std::string& bin_dir) {
+  LaunchOptions o;
+  try {
+    o.scenario = checked_scenario(a);
+  } catch (const ScenarioError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const model::ParamError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  o.run_dir = a.out.empty() ? unique_run_dir("runs", o.scenario.name) : a.out;
+  o.bin_dir = bin_dir;
+  o.progress = !a.quiet;
+  o.external = a.external;
+  o.transport = a.transport;
+  o.chaos_seed = a.chaos;
+  o.domain = resolve_domain(a.domain);
+  if (const std::string why = domain_problem(o.domain, o.scenario.robot.agents); !why.empty()) {
+    std::cerr << "maptr: " << why << "\n";
+    return kExitBadInput;
+  }
+  auto log = launcher_log(o.run_dir);
+  std::cerr << "maptr: run folder " << o.run_dir << "\n";
+  nlohmann::json summary;
+  try {
+    summary = launch(o, *log);
+  } catch (const std::exception& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  std::cout << human_summary(summary);
+  std::cout << "results     " << o.run_dir << "/summary.json, trace.csv, logs/\n";
+  const std::string st = summary.value("status", "");
+  return st == "ok" ? kExitOk : (st.rfind("degraded", 0) == 0 ? kExitDegraded : kExitFailed);
+}
+
+}  // namespace maptr::deploy::cli

@@ -1,0 +1,35 @@
+#pragma once
+// `maptr run [SCENARIO.yaml] [overrides]`: launches one fleet.
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "config/scenario.hpp"
+
+namespace maptr::deploy::cli {
+
+/// The command-line overrides of a scenario (0, -1 or empty: keep the scenario's value).
+struct RunArgs {
+  std::string scenario;
+  int agents = 0;
+  double gross_kg = 0, duration = 0, speed = -1;
+  std::string motor, mode, out;
+  bool realtime = false, quiet = false;
+  int domain = -1, trace_every = 0;
+  double tick_hz = 0;
+  std::vector<std::string> kills, restarts, external;
+  long long chaos = -1;
+  std::string transport = "auto";
+};
+
+/// The `run` subcommand and its options, bound to `a`.
+CLI::App* add_run_command(CLI::App& app, RunArgs& a);
+
+/// The scenario file (or the default one) with every override of `a` applied: the one place
+/// where a command-line option becomes a scenario field. Throws ScenarioError or ParamError.
+config::Scenario scenario_from(const RunArgs& a);
+
+/// Runs the fleet; exit code 0 ok, 3 degraded, 1 failed, 2 bad scenario or options.
+int cmd_run(const RunArgs& a, const std::string& bin_dir);
+
+}  // namespace maptr::deploy::cli

@@ -1,0 +1,72 @@
+#include "deploy/cli/study_commands.hpp"
+
+#include <iostream>
+#include <sstream>
+
+#include "deploy/cli/paths.hpp"
+
+namespace maptr::deploy::cli {
+
+namespace {
+/// `--tick-hz` of an experiment: the accepted range, Hz.
+constexpr double kMinTickHz = 1.0, kMaxTickHz = 10000.0;
+/// `maptr bench tick` without --agents.
+constexpr int kTickBenchAgents = 16;
+}  // namespace
+
+CLI::App* add_experiment_command(CLI::App& app, ExperimentArgs& a) {
+  auto* c = app.add_subcommand("experiment", "run one of the paper's experiments on real fleets");
+  c->add_option("name", a.o.name, "experiment")->required()->check(CLI::IsMember(experiment_names()));
+  c->add_flag("--quick", a.o.quick, "short variant (what the test suite runs)");
+  c->add_option("--out", a.o.out, "output folder (default runs/<date>-experiment-<name>)");
+  c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
+      ->check(CLI::Range(0, kMaxDomain));
+  c->add_option("--tick-hz", a.o.tick_hz, "tick rate, Hz (default 100 for failures, 20 for the others)")
+      ->check(CLI::Range(kMinTickHz, kMaxTickHz));
+  return c;
+}
+
+CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
+  auto* c = app.add_subcommand("bench", "measure the distributed system: scale (N agents) or tick (latency)");
+  c->add_option("what", a.o.what, "scale or tick")->required()->check(CLI::IsMember({"scale", "tick"}));
+  c->add_option("--agents", a.agents, "comma-separated fleet sizes (scale) or one size (tick)");
+  c->add_option("--duration", a.o.duration_s, "simulated seconds per run")->check(CLI::PositiveNumber);
+  c->add_option("--out", a.o.out, "output folder (default runs/<date>-bench-<what>)");
+  c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
+      ->check(CLI::Range(0, kMaxDomain));
+  c->add_flag("--replot", a.o.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
+  return c;
+}
+
+int cmd_experiment(ExperimentArgs a, const std::string& bin_dir) {
+  a.o.bin_dir = bin_dir;
+  a.o.source_dir = source_dir();
+  if (a.o.out.empty())
+    a.o.out = unique_run_dir("runs", "experiment-" + a.o.name + (a.o.quick ? "-quick" : ""));
+  a.o.domain = resolve_domain(a.domain);
+  return run_experiment(a.o);
+}
+
+int cmd_bench(BenchArgs a, const std::string& bin_dir) {
+  a.o.bin_dir = bin_dir;
+  a.o.source_dir = source_dir();
+  if (!a.agents.empty()) {
+    a.o.agents.clear();
+    std::stringstream ss(a.agents);
+    for (std::string x; std::getline(ss, x, ',');) {
+      try {
+        a.o.agents.push_back(std::stoi(x));
+      } catch (...) {
+        std::cerr << "maptr: --agents " << a.agents << ": '" << x << "' is not a number\n";
+        return 2;
+      }
+    }
+  } else if (a.o.what == "tick") {
+    a.o.agents = {kTickBenchAgents};
+  }
+  if (a.o.out.empty()) a.o.out = unique_run_dir("runs", "bench-" + a.o.what);
+  a.o.domain = resolve_domain(a.domain);
+  return run_bench(a.o);
+}
+
+}  // namespace maptr::deploy::cli

@@ -1,0 +1,59 @@
+#include "records/assignments.hpp"
+
+namespace maptr::records {
+
+namespace {
+const char* const kFile = "assignments.csv";
+
+std::vector<AssignmentRecord> rows_of(const CsvFile& f) {
+  const auto& cols = assignment_columns();
+  const std::size_t c_t = f.column(cols[0].name), c_side = f.column(cols[1].name),
+                    c_drv = f.column(cols[2].name);
+  std::vector<AssignmentRecord> out(f.rows());
+  for (std::size_t i = 0; i < f.rows(); ++i) {
+    out[i].t_s = f.number(i, c_t);
+    const std::string& side = f.text(i, c_side);
+    if (side != "L" && side != "R")
+      throw RecordError(std::string(kFile) + " line " + std::to_string(i + 2) + ", column 'side': '" + side +
+                        "' is neither L nor R");
+    out[i].side = side[0];
+    out[i].driving = f.text(i, c_drv);
+  }
+  return out;
+}
+}  // namespace
+
+const std::vector<ColumnSpec>& assignment_columns() {
+  static const std::vector<ColumnSpec> cols = {
+      {"t_s", "s", "%.6f"}, {"side", "", "%c"}, {"driving", "", "%s"}};
+  return cols;
+}
+
+std::string format_assignment(const AssignmentRecord& r) {
+  const auto& cols = assignment_columns();
+  return format_value(cols[0], r.t_s) + "," + r.side + "," + r.driving + "\n";
+}
+
+AssignmentsWriter::AssignmentsWriter(const std::string& path) : f_(std::fopen(path.c_str(), "w")) {
+  if (!f_) throw RecordError("cannot write " + path);
+  std::fputs(header_line(assignment_columns()).c_str(), f_);
+}
+
+AssignmentsWriter::~AssignmentsWriter() {
+  if (f_) std::fclose(f_);
+}
+
+void AssignmentsWriter::write(const AssignmentRecord& r) {
+  std::fputs(format_assignment(r).c_str(), f_);
+  std::fflush(f_);
+}
+
+std::vector<AssignmentRecord> read_assignments(const std::string& path) {
+  return rows_of(CsvFile::read(path, kFile));
+}
+
+std::vector<AssignmentRecord> parse_assignments(const std::string& text) {
+  return rows_of(CsvFile::parse(text, kFile));
+}
+
+}  // namespace maptr::records

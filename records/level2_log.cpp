@@ -1,0 +1,67 @@
+#include "records/level2_log.hpp"
+
+namespace maptr::records {
+
+namespace {
+const char* const kFile = "level2 log";
+const char* const kCount = "%.0f";
+const char* const kReal = "%g";  // the default text form of a double in a C++ stream
+
+std::vector<Level2Record> rows_of(const CsvFile& f) {
+  const auto& cols = level2_columns();
+  std::vector<std::size_t> at;
+  for (const auto& c : cols) at.push_back(f.column(c.spec.name));
+  std::vector<Level2Record> out(f.rows());
+  for (std::size_t i = 0; i < f.rows(); ++i)
+    for (std::size_t k = 0; k < cols.size(); ++k) out[i].*cols[k].value = f.number(i, at[k]);
+  return out;
+}
+
+std::vector<ColumnSpec> specs() {
+  std::vector<ColumnSpec> s;
+  for (const auto& c : level2_columns()) s.push_back(c.spec);
+  return s;
+}
+}  // namespace
+
+const std::vector<Level2Column>& level2_columns() {
+  static const std::vector<Level2Column> cols = {
+      {{"t_s", "s", kReal}, &Level2Record::t_s},
+      {{"n_live", "", kCount}, &Level2Record::n_live},
+      {{"n_other", "", kCount}, &Level2Record::n_other},
+      {{"status", "", kCount}, &Level2Record::status},
+      {{"relaxed", "", kReal}, &Level2Record::relaxed},
+      {{"ipopt_n_active", "", kCount}, &Level2Record::ipopt_n_active},
+      {{"oracle_n_active", "", kCount}, &Level2Record::oracle_n_active},
+      {{"n_target", "", kCount}, &Level2Record::n_target},
+      {{"solve_ms", "ms", kReal}, &Level2Record::solve_ms}};
+  return cols;
+}
+
+std::string level2_log_path(const std::string& run_dir, int side) {
+  return run_dir + "/level2-" + (side == 0 ? "L" : "R") + ".csv";
+}
+
+std::string format_level2_record(const Level2Record& r) {
+  std::string out;
+  for (const auto& c : level2_columns()) out += (out.empty() ? "" : ",") + format_value(c.spec, r.*c.value);
+  return out + "\n";
+}
+
+Level2LogWriter::Level2LogWriter(const std::string& path) {
+  const bool is_new = !std::ifstream(path).good();
+  out_.open(path, std::ios::app);
+  if (out_ && is_new) out_ << header_line(specs()) << std::flush;
+}
+
+void Level2LogWriter::write(const Level2Record& r) { out_ << format_level2_record(r) << std::flush; }
+
+std::vector<Level2Record> read_level2_log(const std::string& path) {
+  return rows_of(CsvFile::read(path, path.substr(path.find_last_of('/') + 1)));
+}
+
+std::vector<Level2Record> parse_level2_log(const std::string& text) {
+  return rows_of(CsvFile::parse(text, kFile));
+}
+
+}  // namespace maptr::records
