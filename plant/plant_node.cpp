@@ -399,10 +399,11 @@ bool PlantLoop::collect() {
 }
 
 void PlantLoop::integrate() {
-  const sim::TickRecord rec = core_.advance(cmd_.applied[0], cmd_.applied[1], cmd_.ref_L, cmd_.ref_R,
-                                            membership_.live_count(0), membership_.live_count(1));
+  // Row k is written before the integration, so that a run whose integration fails keeps it.
+  files_->write(core_.hold(cmd_.applied[0], cmd_.applied[1], cmd_.ref_L, cmd_.ref_R,
+                           membership_.live_count(0), membership_.live_count(1)));
+  core_.integrate();
   times_.done = Clock::now();
-  files_->write(rec);
   const auto& t = times_;
   const float first = t.first_reply != Clock::time_point{} ? us(t.start, t.first_reply) : -1.0f;
   timing_.add(us(t.publish, t.start), first, us(t.start, t.complete), us(t.complete, t.done),

@@ -96,7 +96,15 @@ void PlantCore::record_driving(std::vector<AssignmentChange>& out) {
 
 TickRecord PlantCore::advance(const std::vector<AgentApplied>& left, const std::vector<AgentApplied>& right,
                               double ref_L, double ref_R, int live_L, int live_R) {
-  SideSum sum[2];
+  TickRecord rec = hold(left, right, ref_L, ref_R, live_L, live_R);
+  integrate();
+  return rec;
+}
+
+TickRecord PlantCore::hold(const std::vector<AgentApplied>& left, const std::vector<AgentApplied>& right,
+                           double ref_L, double ref_R, int live_L, int live_R) {
+  SideSum* sum = held_;
+  sum[0] = sum[1] = SideSum{};
   const std::vector<AgentApplied>* sides[2] = {&left, &right};
   hold_inputs(sides, sum);
   TickRecord rec;
@@ -115,13 +123,16 @@ TickRecord PlantCore::advance(const std::vector<AgentApplied>& left, const std::
       below_since_ = -1.0;
     }
   }
+  return rec;
+}
+
+void PlantCore::integrate() {
   integ_.step(x_, u_, t(), c_.dt_s);
-  active_sum_ += sum[0].n + sum[1].n;
-  last_active_L_ = sum[0].n;
-  last_active_R_ = sum[1].n;
+  active_sum_ += held_[0].n + held_[1].n;
+  last_active_L_ = held_[0].n;
+  last_active_R_ = held_[1].n;
   ++ticks_done_;
   ++tick_;
-  return rec;
 }
 
 }  // namespace maptr::sim

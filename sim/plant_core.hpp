@@ -79,8 +79,17 @@ class PlantCore {
 
   /// Integrates [t_k, t_k+1] with the applied inputs and advances k; returns trace row k and
   /// the assignment changes. ref_L/ref_R and the live counts are recorded only.
+  /// Same as hold() then integrate().
   TickRecord advance(const std::vector<AgentApplied>& left, const std::vector<AgentApplied>& right,
                      double ref_L, double ref_R, int live_L, int live_R);
+  /// First half of advance(): holds the inputs over [t_k, t_k+1], updates the ledgers and
+  /// returns what tick k records (so that it can be written before an integration that may
+  /// fail). Must be followed by integrate().
+  TickRecord hold(const std::vector<AgentApplied>& left, const std::vector<AgentApplied>& right, double ref_L,
+                  double ref_R, int live_L, int live_R);
+  /// Second half of advance(): integrates [t_k, t_k+1] with the held inputs and advances k.
+  /// Throws std::runtime_error on a CVODE failure.
+  void integrate();
 
   // Ledgers for the summary.
   double mean_active_agents() const { return ticks_done_ ? active_sum_ / ticks_done_ : 0.0; }
@@ -102,6 +111,7 @@ class PlantCore {
     int n = 0;
   };
   void hold_inputs(const std::vector<AgentApplied>* sides[2], SideSum sum[2]);
+  SideSum held_[2];  ///< sums over the driving agents of the held tick
   TraceRow trace_row(const SideSum sum[2], double ref_L, double ref_R, int live_L, int live_R) const;
   void track_speed(double ref_v);
   void record_driving(std::vector<AssignmentChange>& out);

@@ -165,4 +165,20 @@ TEST(PlantCore, TraceRowIsTheStateAtTkAndTheInputsOverTheTick) {
   EXPECT_EQ(traced, (std::vector<long long>{0, 3, 6}));
 }
 
+TEST(PlantCore, HoldThenIntegrateIsAdvance) {
+  PlantCore a(config(0.01)), b(config(0.01));
+  const int n = 8;
+  for (int k = 0; k < 20; ++k) {
+    const auto ra = a.advance(driving(n, 8.0), driving(n, 9.0), 1.0, 2.0, n, n);
+    const auto rb = b.hold(driving(n, 8.0), driving(n, 9.0), 1.0, 2.0, n, n);
+    EXPECT_EQ(b.tick(), k);  // held, not yet integrated
+    b.integrate();
+    ASSERT_TRUE(ra.row && rb.row);
+    EXPECT_EQ(ra.row->x, rb.row->x);
+    EXPECT_EQ(ra.assignments.size(), rb.assignments.size());
+  }
+  EXPECT_EQ(a.state(), b.state());
+  EXPECT_EQ(a.mean_active_agents(), b.mean_active_agents());
+}
+
 }  // namespace
