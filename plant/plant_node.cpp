@@ -84,7 +84,8 @@ class PlantLoop {
 
   bool discover();
   void open_records();
-  /// True when tick k is the last one to publish (duration reached or speed lost).
+  /// True when the current tick is the last one to publish (duration reached or speed lost);
+  /// stamps the membership records with its time and notes why the run ends.
   bool last_tick();
   void pass_gate();
   void publish(uint8_t run_state);
