@@ -2,5 +2,6 @@
 #include "plant/plant_node.hpp"
 
 int main(int argc, char** argv) {
-  return maptr::comm::run_named_process<maptr::plant::PlantNode>(argc, argv, "plant", "MAPTR plant simulator");
+  return maptr::comm::run_named_process<maptr::plant::PlantNode>(argc, argv, "plant",
+                                                                 "MAPTR plant simulator");
 }

@@ -1,16 +1,17 @@
 #include "plant/plant_node.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cmath>
 #include <fstream>
-#include <map>
-#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "idl/maptrPubSubTypes.h"
-#include "plant/plant_core.hpp"
+#include "plant/barrier.hpp"
+#include "plant/fault_gate.hpp"
+#include "plant/membership.hpp"
+#include "plant/report.hpp"
+#include "plant/run_files.hpp"
+#include "plant/validation.hpp"
+#include "sim/plant_core.hpp"
 
 namespace maptr::plant {
 
@@ -19,27 +20,21 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using Handle = eprosima::fastrtps::rtps::InstanceHandle_t;
 
-/// Wall time the plant waits for the launcher at a fault gate before going on, s.
-constexpr double kGateTimeoutS = 120.0;
-/// Wall time after which tick k is sent again to a restarted member that has not answered, s.
-constexpr double kResendS = 0.2;
+WriterId writer_id(const Handle& h) {
+  WriterId w;
+  const eprosima::fastrtps::rtps::octet* p = h.value;
+  std::copy(p, p + w.bytes.size(), w.bytes.begin());
+  w.set = h.value.has_been_set();
+  return w;
+}
 
-struct Member {
-  bool live = true;        ///< waited for at each tick
-  bool answered = false;   ///< answered the current tick
-  Handle writer{};         ///< DDS writer, learnt from its first sample
-  bool writer_known = false;
-  bool rejoining = false;  ///< restarted (launcher): expected from the next tick, not yet heard
-};
+double wall_ms_now() {
+  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
 
-/// Simulated times at which the plant holds its tick for the launcher's fault injection: the
-/// first tick at or after each scheduled fault (FaultGate / CONTROL_GATE_OPEN).
-std::vector<double> gate_times(const std::vector<config::FaultSpec>& faults) {
-  std::vector<double> t;
-  for (const auto& f : faults) t.push_back(f.at_s);
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
-  return t;
+float us(Clock::time_point a, Clock::time_point b) {
+  return static_cast<float>(std::chrono::duration<double, std::micro>(b - a).count());
 }
 
 int count(const std::vector<uint8_t>& m) {
@@ -48,411 +43,437 @@ int count(const std::vector<uint8_t>& m) {
   return n;
 }
 
-}  // namespace
+sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConfig& c) {
+  sim::PlantCoreConfig pc;
+  pc.robot = sc.robot;
+  pc.dt_s = sc.dt();
+  pc.trace_every = sc.trace_every;
+  pc.initial_discharge_mAh = sc.initial_discharge_mAh;
+  pc.stop_below_speed_pct = sc.stop_below_speed_pct;
+  pc.speed_lost_hold_s = c.speed_lost_hold_s;
+  pc.reached_band_pct = c.reached_band_pct;
+  return pc;
+}
 
-PlantNode::PlantNode(const comm::ProcessArgs& args, std::shared_ptr<spdlog::logger> log)
-    : args_(args), log_(std::move(log)) {}
+std::vector<double> fault_times(const std::vector<config::FaultSpec>& faults) {
+  std::vector<double> t;
+  for (const auto& f : faults) t.push_back(f.at_s);
+  return t;
+}
 
-int PlantNode::run() {
-  const config::Scenario& sc = args_.scenario;
-  const int per_side = sc.robot.per_side();
-  const int n_agents = sc.robot.agents;
-  auto& stop = comm::stop_flag();
-
-  comm::Signal signal;
-  comm::Inbox<msg::AgentReply> replies(signal);
-  comm::Inbox<msg::GroupStatus> groups(signal);
-  comm::Inbox<msg::CentralCommand> centrals(signal);
-  comm::Inbox<msg::MembershipEvent> members(signal);
-  comm::Inbox<msg::Control> controls(signal);
-  comm::MatchCounter tick_match(&signal);
-  comm::Participant p("plant", args_.dds);
-  auto* w_tick = p.writer(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match);
-  p.reader(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &replies);
-  p.reader(p.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), comm::Profile::kStream, &groups);
-  p.reader(p.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), comm::Profile::kStream, &centrals);
-  p.reader(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched, &members);
-  p.reader(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched, &controls);
-  auto* w_ready = p.writer(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched);
-  auto* w_gate = p.writer(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched);
-
-  // 1. Discovery: every endpoint of the fleet matched, then tell the launcher.
-  const auto t_launch = Clock::now();
-  uint64_t seen = signal.count();
-  bool announced = false, started = false;
-  while (!stop.load() && !started) {
-    seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(200));
-    if (!announced && replies.matched() >= n_agents && groups.matched() >= 2 && centrals.matched() >= 1 &&
-        tick_match.matched() >= n_agents + 4) {  // agents, 2 groups, central and the launcher
-      comm::announce_ready(w_ready, "plant", msg::NODE_PLANT);
-      announced = true;
-      log_->info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,
-                 std::chrono::duration<double>(Clock::now() - t_launch).count());
-    }
-    for (auto& [c, h] : controls.drain())
-      if (c.command() == msg::CONTROL_START) started = true;
-  }
-  if (!started) return 0;
-
-  // 2. Lock-step.
-  PlantCore core(sc, args_.run_dir + "/trace.csv", args_.run_dir + "/assignments.csv");
-  std::string end_reason = "duration reached";
-  std::vector<Member> agent[2] = {std::vector<Member>(per_side), std::vector<Member>(per_side)};
-  Member group[2], central;
-  std::vector<AgentApplied> applied[2] = {std::vector<AgentApplied>(per_side), std::vector<AgentApplied>(per_side)};
-  std::vector<uint8_t> mask[2] = {std::vector<uint8_t>(per_side, 0), std::vector<uint8_t>(per_side, 0)};
-  long long group_stamp[2] = {-1, -1}, central_stamp = -1;
+/// What the members last commanded: each agent's applied voltage over the current tick, the
+/// groups' assignments and central's references (carried in the next Tick).
+struct Commands {
+  std::vector<sim::AgentApplied> applied[2];
+  std::vector<uint8_t> mask[2];
+  long long group_stamp[2] = {-1, -1};
+  long long central_stamp = -1;
   double ref_L = 0.0, ref_R = 0.0;
   int relay_L = 0, relay_R = 0;
-  uint64_t rejected = 0, missed_deadlines = 0, declared_dead = 0;
-  nlohmann::json events = nlohmann::json::array();
-  // One record per membership change: who, what, simulated time and wall clock (ms since the
-  // epoch, comparable with the launcher's fault times).
-  auto record = [&](const std::string& name, const std::string& what) {
-    const double wall_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
-    events.push_back({{"name", name}, {"event", what}, {"t_s", core.t()}, {"wall_ms", wall_ms}});
-  };
-  // Deadline: the last resort only; it grows with the fleet (slow is not dead).
-  const double deadline_s = 5.0 + 0.05 * n_agents;
-  const long long total = sc.ticks();
-  auto wall0 = Clock::now();
-  std::string status = "ok";
-  // Wall-clock cost of each lock-step tick, µs (diagnostics for `maptr bench tick`).
-  struct {
-    std::vector<float> publish, first_reply, barrier, integrate, tick;
-  } timing;
+};
 
-  auto live_mask = [&](int s) {
-    std::vector<uint8_t> m(per_side);
-    for (int j = 0; j < per_side; ++j) m[j] = agent[s][j].live ? 1 : 0;
-    return m;
-  };
-  msg::PlantTick sent;  // the tick last published (resent unchanged to a restarted member)
-  auto publish = [&](uint8_t run_state) {
-    msg::PlantTick& t = sent;
-    t.tick(static_cast<uint64_t>(core.tick()));
-    t.t(core.t());
-    t.dt(sc.dt());
-    const auto& x = core.state();
-    t.x(x[model::kX]);
-    t.y(x[model::kY]);
-    t.theta(x[model::kTheta]);
-    t.v_x(x[model::kVx]);
-    t.w(x[model::kW]);
-    t.phidot_L(core.phidot(0));
-    t.phidot_R(core.phidot(1));
-    t.battery_V_L(core.battery_V(0));
-    t.battery_V_R(core.battery_V(1));
-    t.V_active_L(core.active_voltage(0));
-    t.V_active_R(core.active_voltage(1));
-    t.discharge_mAh_L(x[model::kChargeL]);
-    t.discharge_mAh_R(x[model::kChargeR]);
-    t.energy_J(x[model::kEnergyL] + x[model::kEnergyR]);
-    t.distance_m(x[model::kDistance]);
-    t.phidot_ref_L(ref_L);
-    t.phidot_ref_R(ref_R);
-    t.central_stamp(central_stamp);
-    t.active_L(mask[0]);
-    t.active_R(mask[1]);
-    t.group_stamp_L(group_stamp[0]);
-    t.group_stamp_R(group_stamp[1]);
-    t.live_L(live_mask(0));
-    t.live_R(live_mask(1));
-    t.n_active_L(static_cast<uint16_t>(count(mask[0])));
-    t.n_active_R(static_cast<uint16_t>(count(mask[1])));
-    t.relay_count_L(static_cast<uint16_t>(relay_L));
-    t.relay_count_R(static_cast<uint16_t>(relay_R));
-    t.run_state(run_state);
-    w_tick->write(&t);
-  };
-  auto mark_dead_by_name = [&](const std::string& name, const char* why) {
-    int s = 0, j = 0;
-    bool was_live = false;
-    if (config::parse_agent_name(name, s, j) && j < per_side) {
-      was_live = agent[s][j].live;
-      agent[s][j].live = false;
-    } else if (name == "group-L" || name == "group-R") {
-      was_live = group[name == "group-L" ? 0 : 1].live;
-      group[name == "group-L" ? 0 : 1].live = false;
-    } else if (name == "central") {
-      was_live = central.live;
-      central.live = false;
-    }
-    if (!was_live) return;
-    record(name, why);
-    log_->warn("{} {} at t={:.2f} s", name, why, core.t());
-  };
-  auto mark_alive = [&](Member& m, const std::string& name) {
-    if (!m.live || m.rejoining) {
-      record(name, "rejoined");
-      log_->info("{} answers again at t={:.2f} s: re-admitted", name, core.t());
-    }
-    m.live = true;
-    m.rejoining = false;
-  };
-  // A member by its process name, or nullptr.
-  auto member_by_name = [&](const std::string& name) -> Member* {
-    int s = 0, j = 0;
-    if (config::parse_agent_name(name, s, j) && j < per_side) return &agent[s][j];
-    if (name == "group-L" || name == "group-R") return &group[name == "group-L" ? 0 : 1];
-    if (name == "central") return &central;
-    return nullptr;
-  };
-  // Launcher events: a death ends the wait for that process; a restarted process that is
-  // matched and ready is waited for from the next tick on (its old writer no longer counts).
-  uint64_t member_seen = 0;
-  auto apply_members = [&] {
-    for (auto& [e, h] : members.drain()) {
-      member_seen = std::max<uint64_t>(member_seen, e.seq());
-      if (e.kind() == msg::MEMBER_DIED) mark_dead_by_name(e.name(), "died (launcher)");
-      if (e.kind() == msg::MEMBER_STARTED)
-        if (Member* m = member_by_name(e.name())) {
-          m->live = true;
-          m->rejoining = true;
-          m->writer_known = false;
-        }
-    }
-  };
-  // Holds tick k until the launcher has applied the faults due at t_k (see FaultGate).
-  const std::vector<double> gates = gate_times(sc.faults);
-  std::size_t next_gate = 0;
-  auto wait_gate = [&](long long k) {
-    msg::FaultGate g;
-    g.tick(static_cast<uint64_t>(k));
-    g.t(core.t());
-    w_gate->write(&g);
-    const auto t0 = Clock::now();
-    bool open = false;
-    uint64_t need = 0;
-    while (!stop.load() && !(open && member_seen >= need)) {
-      for (auto& [c, h] : controls.drain())
-        if (c.command() == msg::CONTROL_GATE_OPEN && c.tick() == static_cast<uint64_t>(k)) {
-          open = true;
-          need = c.member_seq();
-        }
-      apply_members();
-      if (Clock::now() - t0 > std::chrono::duration<double>(kGateTimeoutS)) {
-        log_->error("the launcher did not answer the fault gate of tick {} within {} s: going on", k, kGateTimeoutS);
-        break;
-      }
-      seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(50));
-    }
-    return Clock::now() - t0;
-  };
+/// Wall-clock instants of one lock-step tick.
+struct TickTimes {
+  Clock::time_point publish, start, first_reply, complete, done;
+};
 
-  while (!stop.load()) {
-    const long long k = core.tick();
-    if (core.speed_lost() && end_reason == "duration reached")
-      end_reason = "the speed stayed more than " + std::to_string(sc.stop_below_speed_pct) +
-                   "% below its reference for 5 s at t=" + std::to_string(core.t()) + " s";
-    const bool last = k >= total || core.speed_lost();
-    if (!last && next_gate < gates.size() && core.t() >= gates[next_gate]) {
-      while (next_gate < gates.size() && core.t() >= gates[next_gate]) ++next_gate;
-      wall0 += wait_gate(k);  // a pause for fault injection is not a missed real-time deadline
-    }
-    const auto t_pub = Clock::now();
-    publish(last ? msg::RUN_FINISHED : msg::RUN_RUNNING);
-    if (last) break;
-    for (int s = 0; s < 2; ++s) {
-      for (auto& m : agent[s]) m.answered = false;
-      for (auto& a : applied[s]) a = AgentApplied{};
-      group[s].answered = false;
-    }
-    central.answered = false;
-    const auto tick_start = Clock::now();
-    auto last_send = tick_start;
-    Clock::time_point t_first{};
-    bool got_central = false, got_group[2] = {false, false};
-    for (;;) {
-      // Membership first, then the samples.
-      apply_members();
-      for (const auto& ev : replies.drain_liveliness())
-        if (!ev.alive)
-          for (int s = 0; s < 2; ++s)
-            for (int j = 0; j < per_side; ++j)
-              if (agent[s][j].writer_known && agent[s][j].writer == ev.writer && agent[s][j].live)
-                mark_dead_by_name(config::agent_name(s, j), "lost (DDS liveliness)");
-      for (const auto& ev : groups.drain_liveliness())
-        if (!ev.alive)
-          for (int s = 0; s < 2; ++s)
-            if (group[s].writer_known && group[s].writer == ev.writer)
-              mark_dead_by_name(s == 0 ? "group-L" : "group-R", "lost (DDS liveliness)");
-      for (const auto& ev : centrals.drain_liveliness())
-        if (!ev.alive && central.writer_known && central.writer == ev.writer)
-          mark_dead_by_name("central", "lost (DDS liveliness)");
+/// The plant's DDS endpoints and the protocol objects they feed.
+class PlantLoop {
+ public:
+  PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const PlantNodeConfig& c);
 
-      for (auto& [r, h] : replies.drain()) {
-        const bool ok = r.side() <= 1 && r.index() < per_side && std::isfinite(r.voltage_V()) &&
-                        std::isfinite(r.current_A()) && std::isfinite(r.efficiency()) && r.voltage_V() >= 0.0 &&
-                        r.voltage_V() <= core.battery_V(r.side()) + 1e-9 && r.state() <= msg::AGENT_STOPPING;
-        if (!ok || static_cast<long long>(r.tick()) != k) {
-          ++rejected;
-          if (!ok) log_->warn("rejected a malformed agent reply (side {}, index {}, V {})", r.side(), r.index(), r.voltage_V());
-          continue;
-        }
-        if (t_first == Clock::time_point{}) t_first = Clock::now();
-        Member& m = agent[r.side()][r.index()];
-        mark_alive(m, config::agent_name(r.side(), r.index()));
-        m.answered = true;
-        m.writer = h;
-        m.writer_known = true;
-        AgentApplied& a = applied[r.side()][r.index()];
-        a.replied = true;
-        a.drives = r.state() == msg::AGENT_ACTIVE || r.state() == msg::AGENT_HOLDING || r.state() == msg::AGENT_STOPPING;
-        a.voltage_V = r.voltage_V();
-        a.current_A = r.current_A();
-        a.efficiency = r.efficiency();
-      }
-      for (auto& [g, h] : groups.drain()) {
-        const bool ok = g.side() <= 1 && g.active().size() == static_cast<std::size_t>(per_side);
-        if (!ok || static_cast<long long>(g.tick()) != k) {
-          ++rejected;
-          continue;
-        }
-        const int s = g.side();
-        mark_alive(group[s], s == 0 ? "group-L" : "group-R");
-        group[s].answered = true;
-        group[s].writer = h;
-        group[s].writer_known = true;
-        got_group[s] = true;
-        mask[s] = g.active();
-        for (int j = 0; j < per_side; ++j)
-          if (!agent[s][j].live) mask[s][j] = 0;  // never trust an assignment of a dead agent
-        group_stamp[s] = k;
-      }
-      for (auto& [c, h] : centrals.drain()) {
-        const bool ok = std::isfinite(c.phidot_ref_L()) && std::isfinite(c.phidot_ref_R()) &&
-                        std::fabs(c.phidot_ref_L()) < 1e4 && std::fabs(c.phidot_ref_R()) < 1e4;
-        if (!ok || static_cast<long long>(c.tick()) != k) {
-          ++rejected;
-          continue;
-        }
-        mark_alive(central, "central");
-        central.answered = true;
-        central.writer = h;
-        central.writer_known = true;
-        got_central = true;
-        ref_L = c.phidot_ref_L();
-        ref_R = c.phidot_ref_R();
-        relay_L = c.relay_count_for_L();
-        relay_R = c.relay_count_for_R();
-        central_stamp = k;
-      }
-      bool complete = (!central.live || central.answered) && (!group[0].live || group[0].answered) &&
-                      (!group[1].live || group[1].answered);
-      for (int s = 0; s < 2 && complete; ++s)
-        for (const auto& m : agent[s])
-          if (m.live && !m.answered) complete = false;
-      if (complete || stop.load()) break;
-      // A restarted member may have matched the tick writer after tick k went out: send it again
-      // (unchanged; followers that have it ignore the copy).
-      bool rejoin_waits = false;
-      for (int s = 0; s < 2; ++s) {
-        for (const auto& m : agent[s]) rejoin_waits |= m.rejoining && !m.answered;
-        rejoin_waits |= group[s].rejoining && !group[s].answered;
-      }
-      rejoin_waits |= central.rejoining && !central.answered;
-      if (rejoin_waits && Clock::now() - last_send > std::chrono::duration<double>(kResendS)) {
-        w_tick->write(&sent);
-        last_send = Clock::now();
-      }
-      if (Clock::now() - tick_start > std::chrono::duration<double>(deadline_s)) {
-        for (int s = 0; s < 2; ++s)
-          for (int j = 0; j < per_side; ++j)
-            if (agent[s][j].live && !agent[s][j].answered) {
-              mark_dead_by_name(config::agent_name(s, j), "missed the tick deadline");
-              ++declared_dead;
-            }
-        for (int s = 0; s < 2; ++s)
-          if (group[s].live && !group[s].answered)
-            mark_dead_by_name(s == 0 ? "group-L" : "group-R", "missed the tick deadline");
-        if (central.live && !central.answered) mark_dead_by_name("central", "missed the tick deadline");
-        continue;
-      }
-      seen = signal.wait_until(seen, Clock::now() + std::chrono::milliseconds(50));
+  bool discover();
+  void open_records();
+  /// True when the current tick is the last one to publish (duration reached or speed lost);
+  /// stamps the membership records with its time and notes why the run ends.
+  bool last_tick();
+  void pass_gate();
+  void publish(uint8_t run_state);
+  /// Waits until tick k is complete; false on the stop signal.
+  bool collect();
+  void integrate();
+  void pace();
+  int report(bool stopped);
+
+ private:
+  void wait_gate(long long k);
+  void apply_launcher_events();
+  void apply_liveliness();
+  void take_replies(long long k, const SampleLimits& lim);
+  void take_groups(long long k, const SampleLimits& lim);
+  void take_centrals(long long k, const SampleLimits& lim);
+  SampleLimits limits() const;
+  void log_membership();
+  void wait(std::chrono::milliseconds at_most);
+  double now_s() const { return std::chrono::duration<double>(Clock::now() - origin_).count(); }
+
+  const config::Scenario& sc_;
+  const std::string run_dir_;
+  spdlog::logger& log_;
+  const PlantNodeConfig c_;
+  const int per_side_;
+  std::atomic<bool>& stop_;
+  const Clock::time_point origin_ = Clock::now();
+
+  comm::Signal signal_;
+  comm::Inbox<msg::AgentReply> replies_{signal_};
+  comm::Inbox<msg::GroupStatus> groups_{signal_};
+  comm::Inbox<msg::CentralCommand> centrals_{signal_};
+  comm::Inbox<msg::MembershipEvent> members_{signal_};
+  comm::Inbox<msg::Control> controls_{signal_};
+  comm::MatchCounter tick_match_{&signal_};
+  comm::Participant p_;
+  eprosima::fastdds::dds::DataWriter* w_tick_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* w_ready_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* w_gate_ = nullptr;
+  uint64_t seen_ = 0;
+
+  sim::PlantCore core_;
+  std::unique_ptr<RunFiles> files_;
+  Membership membership_;
+  std::size_t logged_records_ = 0;
+  FaultGate gate_;
+  Barrier barrier_;
+  Commands cmd_;
+  msg::PlantTick sent_;  ///< the tick last published (resent unchanged to a restarted member)
+  TickTimes times_;
+  TickTiming timing_;
+  Clock::time_point wall0_;
+  std::string end_reason_ = "duration reached";
+  uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;
+};
+
+PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const PlantNodeConfig& c)
+    : sc_(args.scenario),
+      run_dir_(args.run_dir),
+      log_(log),
+      c_(c),
+      per_side_(args.scenario.robot.per_side()),
+      stop_(comm::stop_flag()),
+      p_("plant", args.dds),
+      core_(core_config(args.scenario, c)),
+      membership_(per_side_, wall_ms_now),
+      gate_(fault_times(args.scenario.faults), c.gate_timeout_s),
+      barrier_(c.deadline_s(args.scenario.robot.agents), c.resend_s) {
+  w_tick_ =
+      p_.writer(p_.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match_);
+  p_.reader(p_.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &replies_);
+  p_.reader(p_.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), comm::Profile::kStream, &groups_);
+  p_.reader(p_.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), comm::Profile::kStream,
+            &centrals_);
+  p_.reader(p_.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched,
+            &members_);
+  p_.reader(p_.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched, &controls_);
+  w_ready_ = p_.writer(p_.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched);
+  w_gate_ = p_.writer(p_.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched);
+  for (int s = 0; s < 2; ++s) {
+    cmd_.applied[s].assign(per_side_, sim::AgentApplied{});
+    cmd_.mask[s].assign(per_side_, 0);
+  }
+}
+
+void PlantLoop::wait(std::chrono::milliseconds at_most) {
+  seen_ = signal_.wait_until(seen_, Clock::now() + at_most);
+}
+
+// Every endpoint of the fleet matched, then tell the launcher; true once it says start.
+bool PlantLoop::discover() {
+  const int n_agents = sc_.robot.agents;
+  const auto t_launch = Clock::now();
+  seen_ = signal_.count();
+  bool announced = false, started = false;
+  while (!stop_.load() && !started) {
+    wait(c_.discovery_poll);
+    if (!announced && replies_.matched() >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
+        tick_match_.matched() >= n_agents + 4) {  // agents, 2 groups, central and the launcher
+      comm::announce_ready(w_ready_, "plant", msg::NODE_PLANT);
+      announced = true;
+      log_.info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,
+                std::chrono::duration<double>(Clock::now() - t_launch).count());
     }
-    if (stop.load()) {
-      status = "aborted: stop signal";
+    for (auto& [c, h] : controls_.drain())
+      if (c.command() == msg::CONTROL_START) started = true;
+  }
+  return started;
+}
+
+void PlantLoop::open_records() {
+  files_ = open_csv_run_files(run_dir_ + "/trace.csv", run_dir_ + "/assignments.csv");
+  wall0_ = Clock::now();
+}
+
+bool PlantLoop::last_tick() {
+  membership_.set_time(core_.t());
+  if (core_.speed_lost() && end_reason_ == "duration reached")
+    end_reason_ = end_reason(true, sc_.stop_below_speed_pct, c_.speed_lost_hold_s, core_.t());
+  return core_.tick() >= sc_.ticks() || core_.speed_lost();
+}
+
+void PlantLoop::pass_gate() {
+  if (!gate_.due(core_.t())) return;
+  const auto t0 = Clock::now();
+  wait_gate(core_.tick());
+  wall0_ += Clock::now() - t0;  // a pause for fault injection is not a missed real-time deadline
+}
+
+// Holds tick k until the launcher has applied the faults due at t_k (see FaultGate).
+void PlantLoop::wait_gate(long long k) {
+  msg::FaultGate g;
+  g.tick(static_cast<uint64_t>(k));
+  g.t(core_.t());
+  w_gate_->write(&g);
+  gate_.hold(static_cast<uint64_t>(k));
+  const double t0 = now_s();
+  while (!stop_.load() && !gate_.released(membership_.launcher_seq())) {
+    for (auto& [c, h] : controls_.drain())
+      if (c.command() == msg::CONTROL_GATE_OPEN) gate_.on_open(c.tick(), c.member_seq());
+    apply_launcher_events();
+    if (gate_.timed_out(now_s() - t0)) {
+      log_.error("the launcher did not answer the fault gate of tick {} within {} s: going on", k,
+                 gate_.timeout_s());
       break;
     }
-    (void)got_central;
-    (void)got_group;
-    int live_n[2] = {count(live_mask(0)), count(live_mask(1))};
-    const auto t_complete = Clock::now();
-    core.advance(applied[0], applied[1], ref_L, ref_R, live_n[0], live_n[1]);
-    const auto t_done = Clock::now();
-    auto us = [](Clock::time_point a, Clock::time_point b) {
-      return static_cast<float>(std::chrono::duration<double, std::micro>(b - a).count());
-    };
-    timing.publish.push_back(us(t_pub, tick_start));
-    if (t_first != Clock::time_point{}) timing.first_reply.push_back(us(tick_start, t_first));
-    timing.barrier.push_back(us(tick_start, t_complete));
-    timing.integrate.push_back(us(t_complete, t_done));
-    timing.tick.push_back(us(t_pub, t_done));
-    if (sc.realtime) {
-      const auto due = wall0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(core.t()));
-      if (Clock::now() > due)
-        ++missed_deadlines;
-      else
-        std::this_thread::sleep_until(due);
-    }
+    wait(c_.poll);
   }
-  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-  // A side with no live agent, or a speed that could not be held, is a degraded run.
-  const int live_end[2] = {count(live_mask(0)), count(live_mask(1))};
-  if (status == "ok") {
-    if (live_end[0] == 0 || live_end[1] == 0)
-      status = std::string("degraded: side ") + (live_end[0] == 0 ? "L" : "R") + " has no live agent; the robot stopped";
-    else if (core.reached_reference() && !core.speed_lost()) {  // a run too short to reach its speed is not degraded
-      const double ref_v = 0.5 * (ref_L + ref_R) * sc.robot.wheel_radius_m;
-      const double err = ref_v > 0.0 ? 100.0 * std::fabs(core.state()[model::kVx] - ref_v) / ref_v : 0.0;
-      if (err > 5.0)
-        status = "degraded: the robot ended " + std::to_string(err) + "% off its reference speed";
-    }
+}
+
+void PlantLoop::publish(uint8_t run_state) {
+  times_.publish = Clock::now();
+  msg::PlantTick& t = sent_;
+  t.tick(static_cast<uint64_t>(core_.tick()));
+  t.t(core_.t());
+  t.dt(sc_.dt());
+  const auto& x = core_.state();
+  t.x(x[model::kX]);
+  t.y(x[model::kY]);
+  t.theta(x[model::kTheta]);
+  t.v_x(x[model::kVx]);
+  t.w(x[model::kW]);
+  t.phidot_L(core_.phidot(0));
+  t.phidot_R(core_.phidot(1));
+  t.battery_V_L(core_.battery_V(0));
+  t.battery_V_R(core_.battery_V(1));
+  t.V_active_L(core_.active_voltage(0));
+  t.V_active_R(core_.active_voltage(1));
+  t.discharge_mAh_L(x[model::kChargeL]);
+  t.discharge_mAh_R(x[model::kChargeR]);
+  t.energy_J(x[model::kEnergyL] + x[model::kEnergyR]);
+  t.distance_m(x[model::kDistance]);
+  t.phidot_ref_L(cmd_.ref_L);
+  t.phidot_ref_R(cmd_.ref_R);
+  t.central_stamp(cmd_.central_stamp);
+  t.active_L(cmd_.mask[0]);
+  t.active_R(cmd_.mask[1]);
+  t.group_stamp_L(cmd_.group_stamp[0]);
+  t.group_stamp_R(cmd_.group_stamp[1]);
+  t.live_L(membership_.live_mask(0));
+  t.live_R(membership_.live_mask(1));
+  t.n_active_L(static_cast<uint16_t>(count(cmd_.mask[0])));
+  t.n_active_R(static_cast<uint16_t>(count(cmd_.mask[1])));
+  t.relay_count_L(static_cast<uint16_t>(cmd_.relay_L));
+  t.relay_count_R(static_cast<uint16_t>(cmd_.relay_R));
+  t.run_state(run_state);
+  w_tick_->write(&t);
+}
+
+void PlantLoop::log_membership() {
+  const auto& r = membership_.records();
+  for (; logged_records_ < r.size(); ++logged_records_) {
+    const auto& e = r[logged_records_];
+    if (e.event == "rejoined")
+      log_.info("{} answers again at t={:.2f} s: re-admitted", e.name, e.t_s);
+    else
+      log_.warn("{} {} at t={:.2f} s", e.name, e.event, e.t_s);
   }
-  const auto& x = core.state();
-  nlohmann::json j;
-  j["status"] = status;
-  j["sim_time_s"] = core.t();
-  j["ticks"] = core.tick();
-  j["tick_hz"] = sc.tick_hz;
-  j["loop_wall_s"] = wall;
-  j["distance_m"] = x[model::kDistance];
-  j["energy_J"] = x[model::kEnergyL] + x[model::kEnergyR];
-  j["energy_side_J"] = {{"L", x[model::kEnergyL]}, {"R", x[model::kEnergyR]}};
-  j["mean_active_agents"] = core.mean_active_agents();
-  j["active_agents"] = {{"L", core.last_active(0)}, {"R", core.last_active(1)}};
-  j["live_agents"] = {{"L", live_end[0]}, {"R", live_end[1]}};
-  j["battery_discharge_mAh"] = {{"L", core.drawn_mAh(0)}, {"R", core.drawn_mAh(1)}};
-  j["battery_state_mAh"] = {{"L", x[model::kChargeL]}, {"R", x[model::kChargeR]}};
-  j["agent_active_s"] = {{"L", core.active_time(0)}, {"R", core.active_time(1)}};
-  j["end_reason"] = end_reason;
-  j["battery_V"] = {{"L", core.battery_V(0)}, {"R", core.battery_V(1)}};
-  j["pose"] = {{"x_m", x[model::kX]}, {"y_m", x[model::kY]}, {"theta_rad", x[model::kTheta]}};
-  j["final_speed_mps"] = x[model::kVx];
-  j["max_speed_error_pct"] = core.max_speed_error_pct();
-  j["rms_speed_error_pct"] = core.rms_speed_error_pct();
-  j["rejected_samples"] = rejected;
-  j["missed_deadlines"] = missed_deadlines;
-  auto stats = [](std::vector<float> v) {
-    if (v.empty()) return nlohmann::json::object();
-    std::sort(v.begin(), v.end());
-    auto q = [&](double p) { return v[static_cast<std::size_t>(p * (v.size() - 1))]; };
-    return nlohmann::json{{"median", q(0.5)}, {"p90", q(0.9)}, {"p99", q(0.99)}, {"n", v.size()}};
-  };
-  j["tick_timing_us"] = {{"publish", stats(timing.publish)},
-                         {"first_reply", stats(timing.first_reply)},
-                         {"barrier", stats(timing.barrier)},
-                         {"integrate", stats(timing.integrate)},
-                         {"tick", stats(timing.tick)}};
-  j["declared_dead_by_deadline"] = declared_dead;
-  j["membership_events"] = events;
-  std::ofstream(args_.run_dir + "/plant.json") << j.dump(2) << "\n";
-  log_->info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", status, core.tick(), core.t(), wall);
+}
+
+// Launcher events: a death ends the wait for that process; a restarted process that is
+// matched and ready is waited for from the next tick on (its old writer no longer counts).
+void PlantLoop::apply_launcher_events() {
+  for (auto& [e, h] : members_.drain()) {
+    const LauncherEvent kind = e.kind() == msg::MEMBER_DIED      ? LauncherEvent::kDied
+                               : e.kind() == msg::MEMBER_STARTED ? LauncherEvent::kStarted
+                                                                 : LauncherEvent::kOther;
+    membership_.on_launcher(e.seq(), kind, e.name());
+  }
+  log_membership();
+}
+
+void PlantLoop::apply_liveliness() {
+  for (const auto& ev : replies_.drain_liveliness())
+    if (!ev.alive) membership_.on_liveliness_lost(Role::kAgent, writer_id(ev.writer));
+  for (const auto& ev : groups_.drain_liveliness())
+    if (!ev.alive) membership_.on_liveliness_lost(Role::kGroup, writer_id(ev.writer));
+  for (const auto& ev : centrals_.drain_liveliness())
+    if (!ev.alive) membership_.on_liveliness_lost(Role::kCentral, writer_id(ev.writer));
+  log_membership();
+}
+
+SampleLimits PlantLoop::limits() const {
+  SampleLimits l;
+  l.per_side = per_side_;
+  l.battery_V[0] = core_.battery_V(0);
+  l.battery_V[1] = core_.battery_V(1);
+  l.voltage_tolerance_V = c_.voltage_tolerance_V;
+  l.ref_bound_radps = c_.central_ref_bound_radps;
+  return l;
+}
+
+void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
+  for (auto& [r, h] : replies_.drain()) {
+    const Verdict v = check(r, lim, k);
+    if (v != Verdict::kAccepted) {
+      ++rejected_;
+      if (v == Verdict::kMalformed)
+        log_.warn("rejected a malformed agent reply (side {}, index {}, V {})", r.side(), r.index(),
+                  r.voltage_V());
+      continue;
+    }
+    if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
+    membership_.on_answer({Role::kAgent, r.side(), r.index()}, writer_id(h));
+    cmd_.applied[r.side()][r.index()] = {true, drives(r), r.voltage_V(), r.current_A(), r.efficiency()};
+  }
+}
+
+void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
+  for (auto& [g, h] : groups_.drain()) {
+    if (check(g, lim, k) != Verdict::kAccepted) {
+      ++rejected_;
+      continue;
+    }
+    const int s = g.side();
+    membership_.on_answer({Role::kGroup, s, 0}, writer_id(h));
+    cmd_.mask[s] = g.active();
+    for (int j = 0; j < per_side_; ++j)
+      if (!membership_.at({Role::kAgent, s, j}).live)
+        cmd_.mask[s][j] = 0;  // never trust a dead agent's assignment
+    cmd_.group_stamp[s] = k;
+  }
+}
+
+void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
+  for (auto& [c, h] : centrals_.drain()) {
+    if (check(c, lim, k) != Verdict::kAccepted) {
+      ++rejected_;
+      continue;
+    }
+    membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));
+    cmd_.ref_L = c.phidot_ref_L();
+    cmd_.ref_R = c.phidot_ref_R();
+    cmd_.relay_L = c.relay_count_for_L();
+    cmd_.relay_R = c.relay_count_for_R();
+    cmd_.central_stamp = k;
+  }
+}
+
+bool PlantLoop::collect() {
+  const long long k = core_.tick();
+  membership_.begin_tick();
+  for (auto& side : cmd_.applied)
+    for (auto& a : side) a = sim::AgentApplied{};
+  times_.start = Clock::now();
+  times_.first_reply = Clock::time_point{};
+  barrier_.start(now_s());
+  const SampleLimits lim = limits();
+  for (;;) {
+    // Membership first, then the samples.
+    apply_launcher_events();
+    apply_liveliness();
+    take_replies(k, lim);
+    log_membership();
+    take_groups(k, lim);
+    take_centrals(k, lim);
+    log_membership();
+    if (Barrier::complete(membership_) || stop_.load()) break;
+    // A restarted member may have matched the tick writer after tick k went out: send it again
+    // (unchanged; followers that have it ignore the copy).
+    if (barrier_.resend_due(membership_, now_s())) w_tick_->write(&sent_);
+    if (barrier_.deadline_passed(now_s())) {
+      declared_dead_ += membership_.on_deadline();
+      log_membership();
+      continue;
+    }
+    wait(c_.poll);
+  }
+  times_.complete = Clock::now();
+  return !stop_.load();
+}
+
+void PlantLoop::integrate() {
+  // Row k is written before the integration, so that a run whose integration fails keeps it.
+  files_->write(core_.hold(cmd_.applied[0], cmd_.applied[1], cmd_.ref_L, cmd_.ref_R,
+                           membership_.live_count(0), membership_.live_count(1)));
+  core_.integrate();
+  times_.done = Clock::now();
+  const auto& t = times_;
+  const float first = t.first_reply != Clock::time_point{} ? us(t.start, t.first_reply) : -1.0f;
+  timing_.add(us(t.publish, t.start), first, us(t.start, t.complete), us(t.complete, t.done),
+              us(t.publish, t.done));
+}
+
+void PlantLoop::pace() {
+  if (!sc_.realtime) return;
+  const auto due =
+      wall0_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(core_.t()));
+  if (Clock::now() > due)
+    ++missed_deadlines_;
+  else
+    std::this_thread::sleep_until(due);
+}
+
+int PlantLoop::report(bool stopped) {
+  const double wall = std::chrono::duration<double>(Clock::now() - wall0_).count();
+  RunEnd e;
+  e.stopped = stopped;
+  for (int s = 0; s < 2; ++s) e.live_agents[s] = membership_.live_count(s);
+  e.reached_reference = core_.reached_reference();
+  e.speed_lost = core_.speed_lost();
+  e.ref_speed_mps = 0.5 * (cmd_.ref_L + cmd_.ref_R) * sc_.robot.wheel_radius_m;
+  e.speed_mps = core_.state()[model::kVx];
+  ReportInputs in;
+  in.status = run_status(e, c_.degraded_band_pct);
+  in.end_reason = end_reason_;
+  in.tick_hz = sc_.tick_hz;
+  in.loop_wall_s = wall;
+  in.live_agents[0] = e.live_agents[0];
+  in.live_agents[1] = e.live_agents[1];
+  in.rejected_samples = rejected_;
+  in.missed_deadlines = missed_deadlines_;
+  in.declared_dead_by_deadline = declared_dead_;
+  in.tick_timing_us = timing_.json();
+  std::ofstream(run_dir_ + "/plant.json") << plant_report(core_, in, membership_.records()).dump(2) << "\n";
+  log_.info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", in.status, core_.tick(), core_.t(),
+            wall);
   // Give the last Tick time to reach every reader before the participant goes away.
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  return status.rfind("aborted", 0) == 0 ? 1 : 0;
+  std::this_thread::sleep_for(c_.linger);
+  return aborted(in.status) ? 1 : 0;
+}
+
+}  // namespace
+
+PlantNode::PlantNode(const comm::ProcessArgs& args, std::shared_ptr<spdlog::logger> log,
+                     PlantNodeConfig config)
+    : args_(args), log_(std::move(log)), config_(config) {}
+
+int PlantNode::run() {
+  auto& stop = comm::stop_flag();
+  PlantLoop loop(args_, *log_, config_);
+  if (!loop.discover()) return 0;
+  loop.open_records();
+  bool stopped = false;
+  while (!stop.load()) {
+    const bool last = loop.last_tick();
+    if (!last) loop.pass_gate();
+    loop.publish(last ? msg::RUN_FINISHED : msg::RUN_RUNNING);
+    if (last) break;
+    if (!loop.collect()) {
+      stopped = true;
+      break;
+    }
+    loop.integrate();
+    loop.pace();
+  }
+  return loop.report(stopped);
 }
 
 }  // namespace maptr::plant

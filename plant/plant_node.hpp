@@ -1,25 +1,28 @@
 #pragma once
 // DDS node of the plant: the lock-step barrier. Publishes Tick k, waits for every live agent's
 // AgentReply k, each live group's GroupStatus k and central's CentralCommand k, integrates,
-// and publishes Tick k+1. Membership: the launcher's events (a child died), DDS liveliness
-// (a writer's lease expired) and, as a last resort, a per-tick wall-clock deadline that grows
-// with the fleet; a member declared dead is re-admitted as soon as it answers the current tick.
+// and publishes Tick k+1. The protocol's parts are objects of their own (membership, barrier,
+// sample validation, fault gate, report; the physics in sim::PlantCore): this node only wires
+// the DDS inboxes and writers to them.
 #include <spdlog/logger.h>
 
 #include <memory>
 
 #include "comm/process.hpp"
+#include "plant/plant_config.hpp"
 
 namespace maptr::plant {
 
 class PlantNode {
  public:
-  PlantNode(const comm::ProcessArgs& args, std::shared_ptr<spdlog::logger> log);
+  PlantNode(const comm::ProcessArgs& args, std::shared_ptr<spdlog::logger> log, PlantNodeConfig config = {});
+  /// Discovery, then per tick: fault gate, publish, collect, integrate, pace; then the report.
   int run();
 
  private:
   const comm::ProcessArgs& args_;
   std::shared_ptr<spdlog::logger> log_;
+  PlantNodeConfig config_;
 };
 
 }  // namespace maptr::plant

@@ -1,5 +1,5 @@
 // Plant dynamics (model/dynamics.hpp): forces, steady states, energy ledger, coast-down.
-// Long runs use the CVODE adapter (plant/integrator.hpp) in 10 ms ticks, like the plant.
+// Long runs use the CVODE adapter (sim/integrator.hpp) in 10 ms ticks, like the plant.
 #include <gtest/gtest.h>
 
 #include "tests/unit/test_support.hpp"
@@ -12,7 +12,7 @@
 
 #include "model/dynamics.hpp"
 #include "model/motor.hpp"
-#include "plant/integrator.hpp"
+#include "sim/integrator.hpp"
 
 namespace {
 
@@ -20,7 +20,7 @@ using maptr::test::record;
 using maptr::test::bisect;
 
 namespace mm = maptr::model;
-using maptr::plant::CvodeIntegrator;
+using maptr::sim::CvodeIntegrator;
 
 constexpr double kG = 9.81;
 

@@ -10,7 +10,7 @@
 
 #include "model/dynamics.hpp"
 #include "model/kinematics.hpp"
-#include "plant/integrator.hpp"
+#include "sim/integrator.hpp"
 
 namespace {
 
@@ -78,7 +78,7 @@ TEST(Kinematics, PureRotationHasOppositeWheelSpeeds) {
 TEST(Kinematics, SpinInPlaceAgainstClosedForm) {
   mm::RobotParams p;  // N = 16, m = 13.2 kg, Type I
   p.k_s = 1e7;        // atan(k_s w x_j) within 1e-5 of pi/2 while |w x_j| > 0.03 m/s
-  maptr::plant::CvodeIntegrator cv(p);
+  maptr::sim::CvodeIntegrator cv(p);
   const double w0 = 2.0;
   mm::State x{};
   x[mm::kW] = w0;

@@ -6,12 +6,12 @@
 
 #include "model/dynamics.hpp"
 
-namespace maptr::plant {
+namespace maptr::sim {
 
 struct IntegratorOptions {
   double rtol = 1e-8;
-  double atol_scale = 1e-9;   ///< absolute tolerance = atol_scale * max(1, typical magnitude)
-  long max_steps = 100000;    ///< per tick
+  double atol_scale = 1e-9;  ///< absolute tolerance = atol_scale * max(1, typical magnitude)
+  long max_steps = 100000;   ///< per tick
 };
 
 class CvodeIntegrator {
@@ -42,4 +42,4 @@ class CvodeIntegrator {
 /// Classic fixed-step RK4 with the same inputs held (reference for tests and benches).
 void rk4_step(const model::RobotParams& p, const model::Inputs& u, model::State& x, double dt, int substeps);
 
-}  // namespace maptr::plant
+}  // namespace maptr::sim

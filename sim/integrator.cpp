@@ -1,4 +1,4 @@
-#include "plant/integrator.hpp"
+#include "sim/integrator.hpp"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace maptr::plant {
+namespace maptr::sim {
 
 struct CvodeIntegrator::Impl {
   SUNContext ctx = nullptr;
@@ -41,7 +41,8 @@ int rhs(realtype, N_Vector y, N_Vector ydot, void* user) {
 }
 
 void check(int flag, const char* what) {
-  if (flag < 0) throw std::runtime_error(std::string("CVODE ") + what + " failed with flag " + std::to_string(flag));
+  if (flag < 0)
+    throw std::runtime_error(std::string("CVODE ") + what + " failed with flag " + std::to_string(flag));
 }
 
 }  // namespace
@@ -59,7 +60,8 @@ CvodeIntegrator::CvodeIntegrator(model::RobotParams p, IntegratorOptions o)
   // Ledgers grow large (kJ, km): give them absolute tolerances to match their scale.
   for (int i : {model::kEnergyL, model::kEnergyR, model::kLossJoule, model::kLossMech, model::kLossEmf})
     at[i] = o_.atol_scale * 1e3;
-  for (int i : {model::kX, model::kY, model::kPathL, model::kPathR, model::kDistance, model::kChargeL, model::kChargeR})
+  for (int i : {model::kX, model::kY, model::kPathL, model::kPathR, model::kDistance, model::kChargeL,
+                model::kChargeR})
     at[i] = o_.atol_scale * 1e2;
   im.mem = CVodeCreate(CV_BDF, im.ctx);
   if (!im.mem) throw std::runtime_error("CVODE: CVodeCreate failed");
@@ -108,4 +110,4 @@ void rk4_step(const model::RobotParams& p, const model::Inputs& u, model::State&
   }
 }
 
-}  // namespace maptr::plant
+}  // namespace maptr::sim

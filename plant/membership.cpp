@@ -1,0 +1,117 @@
+#include "plant/membership.hpp"
+
+#include <algorithm>
+
+#include "config/scenario.hpp"
+
+namespace maptr::plant {
+
+std::string member_name(const MemberId& id) {
+  switch (id.role) {
+    case Role::kAgent:
+      return config::agent_name(id.side, id.index);
+    case Role::kGroup:
+      return id.side == 0 ? "group-L" : "group-R";
+    case Role::kCentral:
+      break;
+  }
+  return "central";
+}
+
+Membership::Membership(int per_side, std::function<double()> wall_ms)
+    : per_side_(per_side), wall_ms_(std::move(wall_ms)) {
+  for (int s = 0; s < 2; ++s) {
+    agents_[s].assign(per_side, Member{});
+    for (int j = 0; j < per_side; ++j) all_.push_back({Role::kAgent, s, j});
+  }
+  all_.push_back({Role::kGroup, 0, 0});
+  all_.push_back({Role::kGroup, 1, 0});
+  all_.push_back({Role::kCentral, 0, 0});
+}
+
+Member& Membership::at(const MemberId& id) {
+  if (id.role == Role::kAgent) return agents_[id.side][id.index];
+  if (id.role == Role::kGroup) return groups_[id.side];
+  return central_;
+}
+
+const Member& Membership::at(const MemberId& id) const { return const_cast<Membership*>(this)->at(id); }
+
+std::optional<MemberId> Membership::find(const std::string& name) const {
+  int s = 0, j = 0;
+  if (config::parse_agent_name(name, s, j) && j < per_side_) return MemberId{Role::kAgent, s, j};
+  if (name == "group-L" || name == "group-R") return MemberId{Role::kGroup, name == "group-L" ? 0 : 1, 0};
+  if (name == "central") return MemberId{Role::kCentral, 0, 0};
+  return std::nullopt;
+}
+
+void Membership::begin_tick() {
+  for (const auto& id : all_) at(id).answered = false;
+}
+
+void Membership::record(const MemberId& id, const char* what) {
+  records_.push_back({member_name(id), what, t_s_, wall_ms_()});
+}
+
+void Membership::mark_dead(const MemberId& id, const char* why) {
+  Member& m = at(id);
+  if (!m.live) return;
+  m.live = false;
+  record(id, why);
+}
+
+void Membership::on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name) {
+  launcher_seq_ = std::max(launcher_seq_, seq);
+  const auto id = find(name);
+  if (!id || kind == LauncherEvent::kOther) return;
+  if (kind == LauncherEvent::kDied) {
+    mark_dead(*id, "died (launcher)");
+    return;
+  }
+  Member& m = at(*id);
+  m.live = true;
+  m.rejoining = true;
+  m.writer_known = false;
+}
+
+void Membership::on_liveliness_lost(Role role, const WriterId& writer) {
+  for (const auto& id : all_) {
+    const Member& m = at(id);
+    if (id.role == role && m.writer_known && m.writer == writer) mark_dead(id, "lost (DDS liveliness)");
+  }
+}
+
+void Membership::on_answer(const MemberId& id, const WriterId& writer) {
+  Member& m = at(id);
+  if (!m.live || m.rejoining) record(id, "rejoined");
+  m.live = true;
+  m.rejoining = false;
+  m.answered = true;
+  m.writer = writer;
+  m.writer_known = true;
+}
+
+int Membership::on_deadline() {
+  int agents = 0;
+  for (const auto& id : all_) {
+    const Member& m = at(id);
+    if (!m.live || m.answered) continue;
+    mark_dead(id, "missed the tick deadline");
+    if (id.role == Role::kAgent) ++agents;
+  }
+  return agents;
+}
+
+std::vector<uint8_t> Membership::live_mask(int side) const {
+  std::vector<uint8_t> m(per_side_);
+  for (int j = 0; j < per_side_; ++j) m[j] = agents_[side][j].live ? 1 : 0;
+  return m;
+}
+
+int Membership::live_count(int side) const {
+  int n = 0;
+  for (const auto& m : agents_[side]) n += m.live ? 1 : 0;
+  return n;
+}
+
+}  // namespace maptr::plant

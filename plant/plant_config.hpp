@@ -1,0 +1,38 @@
+#pragma once
+// The plant node's thresholds (none of them is a scenario field): the barrier's last-resort
+// deadline, the bounds a sample must respect, the fault gate's waits and the run status bands.
+#include <chrono>
+
+namespace maptr::plant {
+
+struct PlantNodeConfig {
+  /// Per-tick wall-clock deadline of the barrier, s: deadline_base_s + deadline_per_agent_s * n
+  /// for a fleet of n agents (the last resort only: slow is not dead).
+  double deadline_base_s = 5.0;
+  double deadline_per_agent_s = 0.05;
+  /// Largest accepted |wheel speed reference| from central, rad/s.
+  double central_ref_bound_radps = 1e4;
+  /// Tolerance above the side's battery voltage an agent's applied voltage may reach, V.
+  double voltage_tolerance_V = 1e-9;
+  /// Final speed error above which a run that reached its reference is degraded, %.
+  double degraded_band_pct = 5.0;
+  /// Tracking error under which the reference counts as reached the first time, %.
+  double reached_band_pct = 2.0;
+  /// How long the speed must stay below its reference (stop_below_speed_pct) to end the run, s.
+  double speed_lost_hold_s = 5.0;
+  /// Wall time the plant waits for the launcher at a fault gate before going on, s.
+  double gate_timeout_s = 120.0;
+  /// Wall time after which tick k is sent again to a restarted member that has not answered, s.
+  double resend_s = 0.2;
+  /// Longest wait for a DDS sample inside the barrier and the fault gate, ms.
+  std::chrono::milliseconds poll{50};
+  /// Longest wait for a DDS sample during discovery, ms.
+  std::chrono::milliseconds discovery_poll{200};
+  /// Time the last Tick is given to reach every reader before the participant goes away, ms.
+  std::chrono::milliseconds linger{200};
+
+  /// The barrier's deadline for a fleet of n agents, s.
+  double deadline_s(int n_agents) const { return deadline_base_s + deadline_per_agent_s * n_agents; }
+};
+
+}  // namespace maptr::plant

@@ -1,0 +1,68 @@
+#pragma once
+// The run's report: its status (ok, degraded or aborted, with the reason), the wall-clock
+// timing of the lock-step ticks and the content of plant.json, which the launcher and the
+// experiments read by key.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "plant/membership.hpp"
+#include "sim/plant_core.hpp"
+
+namespace maptr::plant {
+
+/// Wall-clock cost of each lock-step tick, µs: publishing, the first reply, the whole barrier,
+/// the integration and the tick from publish to integrated.
+class TickTiming {
+ public:
+  /// first_reply_us < 0: no reply came in during the tick.
+  void add(float publish_us, float first_reply_us, float barrier_us, float integrate_us, float tick_us);
+  /// {"publish", "first_reply", "barrier", "integrate", "tick"}: each {median, p90, p99, n}, or
+  /// an empty object when nothing was measured.
+  nlohmann::json json() const;
+
+ private:
+  std::vector<float> publish_, first_reply_, barrier_, integrate_, tick_;
+};
+
+/// Median, p90, p99 (nearest rank below) and n of a series; an empty object when empty.
+nlohmann::json quantiles(std::vector<float> v);
+
+/// How the run ended, as the node saw it.
+struct RunEnd {
+  bool stopped = false;            ///< the stop signal ended the loop
+  int live_agents[2] = {0, 0};     ///< live agents per side at the end
+  bool reached_reference = false;  ///< the speed reached its reference at least once
+  bool speed_lost = false;
+  double ref_speed_mps = 0.0;  ///< final body speed reference, m/s
+  double speed_mps = 0.0;      ///< final body speed, m/s
+};
+
+/// "ok", "aborted: stop signal", or "degraded: ..." when a side has no live agent or the run
+/// ended more than degraded_band_pct off its reference speed (a run that never reached its
+/// speed, or that ended for a lost speed, is not judged on it).
+std::string run_status(const RunEnd& e, double degraded_band_pct);
+bool aborted(const std::string& status);
+
+/// "duration reached", or why the run ended early for a lost speed.
+std::string end_reason(bool speed_lost, double stop_below_speed_pct, double hold_s, double t_s);
+
+/// Everything plant.json holds besides the core's ledgers.
+struct ReportInputs {
+  std::string status;
+  std::string end_reason;
+  double tick_hz = 0.0;
+  double loop_wall_s = 0.0;
+  int live_agents[2] = {0, 0};
+  uint64_t rejected_samples = 0;
+  uint64_t missed_deadlines = 0;
+  uint64_t declared_dead_by_deadline = 0;
+  nlohmann::json tick_timing_us = nlohmann::json::object();
+};
+
+nlohmann::json membership_json(const std::vector<MembershipRecord>& records);
+/// plant.json.
+nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
+                            const std::vector<MembershipRecord>& records);
+
+}  // namespace maptr::plant

@@ -1,0 +1,36 @@
+#pragma once
+// Sample validation: pure checks of the samples the plant takes, on the IDL types, free of
+// the node. A sample is malformed when a field is out of its range (side, index, mask
+// length), not finite, or physically impossible (a voltage outside [0, battery + tolerance],
+// a wheel-speed reference beyond its bound); a well-formed sample still counts only for the
+// tick it answers.
+#include "idl/maptr.h"
+
+namespace maptr::plant {
+
+/// Ranges a sample must respect (the node sets the battery voltages at each tick).
+struct SampleLimits {
+  int per_side = 0;                   ///< agents per side
+  double battery_V[2] = {0.0, 0.0};   ///< each side's battery voltage at t_k, V
+  double voltage_tolerance_V = 1e-9;  ///< allowed excess of an applied voltage over it, V
+  double ref_bound_radps = 1e4;       ///< largest |wheel speed reference|, rad/s
+};
+
+bool valid(const msg::AgentReply& r, const SampleLimits& l);
+bool valid(const msg::GroupStatus& g, const SampleLimits& l);
+bool valid(const msg::CentralCommand& c, const SampleLimits& l);
+
+/// True when the agent's state drives its motor over the tick (active, holding or stopping).
+bool drives(const msg::AgentReply& r);
+
+enum class Verdict { kAccepted, kMalformed, kOtherTick };
+
+/// Whether a sample counts for tick k: well-formed and answering k.
+template <class Sample>
+Verdict check(const Sample& s, const SampleLimits& l, long long k) {
+  if (!valid(s, l)) return Verdict::kMalformed;
+  if (static_cast<long long>(s.tick()) != k) return Verdict::kOtherTick;
+  return Verdict::kAccepted;
+}
+
+}  // namespace maptr::plant

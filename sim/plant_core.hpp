@@ -1,0 +1,137 @@
+#pragma once
+// Plant logic, free of DDS, clocks and files: owns the simulated time t_k = k * dt and the
+// robot state, integrates one tick [t_k, t_k+1] at a time with the agents' voltages held
+// (CVODE) and keeps the run's ledgers. Each tick returns what the run records contain: the
+// trace row k (state at t_k, inputs over [t_k, t_k+1]) and each change of a side's set of
+// driving agents; the caller writes them.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "model/params.hpp"
+#include "sim/integrator.hpp"
+
+namespace maptr::sim {
+
+/// What one agent applied over [t_k, t_k+1] (from its reply).
+struct AgentApplied {
+  bool replied = false;
+  bool drives = false;
+  double voltage_V = 0.0;
+  double current_A = 0.0;
+  double efficiency = 0.0;
+};
+
+/// What the plant core needs of a scenario (the node builds it).
+struct PlantCoreConfig {
+  model::RobotParams robot;
+  double dt_s = 0.01;                  ///< tick length, s
+  int trace_every = 1;                 ///< a trace row every this many ticks
+  double initial_discharge_mAh = 0.0;  ///< charge already drawn from each battery at t = 0, mAh
+  /// Speed shortfall below the reference that counts as a lost speed, % (0: never).
+  double stop_below_speed_pct = 0.0;
+  /// How long the shortfall must last to count as a lost speed, s.
+  double speed_lost_hold_s = 5.0;
+  /// Tracking error under which the reference counts as reached the first time, %.
+  double reached_band_pct = 2.0;
+};
+
+/// Trace row k: the state at t_k and what was applied over [t_k, t_k+1]. Per-side arrays are
+/// indexed 0 = left, 1 = right.
+struct TraceRow {
+  long long tick = 0;
+  double t_s = 0.0;
+  model::State x{};
+  double phidot_radps[2] = {0.0, 0.0};
+  double ref_radps[2] = {0.0, 0.0};
+  double voltage_mean_V[2] = {0.0, 0.0};   ///< mean over the driving agents (0 if none)
+  double current_A[2] = {0.0, 0.0};        ///< sum over the driving agents
+  double efficiency_mean[2] = {0.0, 0.0};  ///< mean over the driving agents (0 if none)
+  double battery_V[2] = {0.0, 0.0};
+  int n_active[2] = {0, 0};
+  int n_live[2] = {0, 0};
+};
+
+/// A side's set of driving agents changed at t_s (one flag per agent of the side).
+struct AssignmentChange {
+  double t_s = 0.0;
+  int side = 0;
+  std::vector<uint8_t> driving;
+};
+
+/// What one tick produced for the run records.
+struct TickRecord {
+  std::optional<TraceRow> row;  ///< empty when the tick is not traced (trace_every)
+  std::vector<AssignmentChange> assignments;
+};
+
+class PlantCore {
+ public:
+  explicit PlantCore(const PlantCoreConfig& c);
+
+  long long tick() const { return tick_; }
+  double t() const { return tick_ * c_.dt_s; }
+  const model::State& state() const { return x_; }
+  double battery_V(int side) const;
+  double phidot(int side) const;
+  /// Mean voltage the active agents of a side applied over the last tick, V (0 if none).
+  double active_voltage(int side) const { return active_V_[side]; }
+
+  /// Integrates [t_k, t_k+1] with the applied inputs and advances k; returns trace row k and
+  /// the assignment changes. ref_L/ref_R and the live counts are recorded only.
+  /// Same as hold() then integrate().
+  TickRecord advance(const std::vector<AgentApplied>& left, const std::vector<AgentApplied>& right,
+                     double ref_L, double ref_R, int live_L, int live_R);
+  /// First half of advance(): holds the inputs over [t_k, t_k+1], updates the ledgers and
+  /// returns what tick k records (so that it can be written before an integration that may
+  /// fail). Must be followed by integrate().
+  TickRecord hold(const std::vector<AgentApplied>& left, const std::vector<AgentApplied>& right, double ref_L,
+                  double ref_R, int live_L, int live_R);
+  /// Second half of advance(): integrates [t_k, t_k+1] with the held inputs and advances k.
+  /// Throws std::runtime_error on a CVODE failure.
+  void integrate();
+
+  // Ledgers for the summary.
+  double mean_active_agents() const { return ticks_done_ ? active_sum_ / ticks_done_ : 0.0; }
+  double max_speed_error_pct() const { return max_err_pct_; }
+  double rms_speed_error_pct() const;
+  bool reached_reference() const { return reached_; }
+  /// True once the speed has stayed more than stop_below_speed_pct below its reference for
+  /// speed_lost_hold_s (after having reached it); never when that option is 0.
+  bool speed_lost() const { return speed_lost_; }
+  /// Time each agent drove, s (index: side, agent).
+  const std::vector<double>& active_time(int side) const { return active_time_[side]; }
+  /// Charge drawn during the run (without the initial discharge), mAh.
+  double drawn_mAh(int side) const;
+  int last_active(int side) const { return side == 0 ? last_active_L_ : last_active_R_; }
+
+ private:
+  struct SideSum {
+    double v = 0, i = 0, eff = 0;
+    int n = 0;
+  };
+  void hold_inputs(const std::vector<AgentApplied>* sides[2], SideSum sum[2]);
+  SideSum held_[2];  ///< sums over the driving agents of the held tick
+  TraceRow trace_row(const SideSum sum[2], double ref_L, double ref_R, int live_L, int live_R) const;
+  void track_speed(double ref_v);
+  void record_driving(std::vector<AssignmentChange>& out);
+
+  PlantCoreConfig c_;
+  CvodeIntegrator integ_;
+  model::State x_{};
+  model::Inputs u_;
+  long long tick_ = 0;
+  std::vector<uint8_t> last_drive_[2];
+  double active_V_[2] = {0.0, 0.0};
+  std::vector<double> active_time_[2];
+  double below_since_ = -1.0;
+  bool speed_lost_ = false;
+  long long ticks_done_ = 0;
+  double active_sum_ = 0.0;
+  double max_err_pct_ = 0.0, err_sq_sum_ = 0.0;
+  long long err_n_ = 0;
+  int last_active_L_ = 0, last_active_R_ = 0;
+  bool reached_ = false;
+};
+
+}  // namespace maptr::sim
