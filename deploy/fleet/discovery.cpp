@@ -58,6 +58,10 @@ DiscoveryServer::DiscoveryServer(const std::string& binary, const std::string& r
   if (!std::filesystem::exists(binary)) throw std::runtime_error("missing process binary " + binary);
 }
 
+DiscoveryServer::~DiscoveryServer() {
+  if (c_.running) kill(c_.pid, SIGKILL), waitpid(c_.pid, nullptr, 0);
+}
+
 bool DiscoveryServer::start(const Environment& env, ParticipantIds& ids) {
   spawn(c_, run_dir_, env, ids.take(0, restarts_));  // fresh ports after a restart
   const auto t0 = Clock::now();

@@ -23,6 +23,9 @@ class DiscoveryServer {
   /// binary: maptr_discovery; listen_s: how long start() waits for it to listen, s.
   DiscoveryServer(const std::string& binary, const std::string& run_dir, int domain, double listen_s,
                   double restart_delay_s);
+  ~DiscoveryServer();  ///< kills a server still running (a launch that failed half-way)
+  DiscoveryServer(const DiscoveryServer&) = delete;
+  DiscoveryServer& operator=(const DiscoveryServer&) = delete;
 
   const std::string& address() const { return address_; }  ///< "127.0.0.1:PORT"
   int port() const { return port_; }

@@ -80,9 +80,8 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
 }
 
 Fleet::~Fleet() {
-  signal_all(kids_, SIGKILL);
+  signal_all(kids_, SIGKILL);  // only after a launch that failed half-way: end() ended them
   participant_.reset();
-  if (ds_) ds_->stop(cfg_.discovery_term_s);
 }
 
 double Fleet::since(Clock::time_point t0) const {

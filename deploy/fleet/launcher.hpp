@@ -16,10 +16,10 @@ namespace maptr::deploy {
 
 struct LaunchOptions {
   config::Scenario scenario;
-  std::string run_dir;       ///< created if missing
-  std::string bin_dir;       ///< where maptr_agent & co. are
-  int domain = 0;            ///< DDS domain id
-  bool progress = true;      ///< print a progress line every second
+  std::string run_dir;   ///< created if missing
+  std::string bin_dir;   ///< where maptr_agent & co. are
+  int domain = 0;        ///< DDS domain id
+  bool progress = true;  ///< print a progress line every second
   /// Processes the launcher does not start: the user starts them (e.g. on another terminal or
   /// host) with the command printed at launch; the fleet waits for them like for the others.
   std::vector<std::string> external;
@@ -27,7 +27,7 @@ struct LaunchOptions {
   /// agents, UDP above (with 128+ writers into the plant's port, Fast DDS's shared-memory port
   /// lock times out on two cores and aborts the plant with a boost interprocess exception).
   std::string transport = "auto";
-  long long chaos_seed = -1; ///< recorded in the summary when the faults came from --chaos
+  long long chaos_seed = -1;  ///< recorded in the summary when the faults came from --chaos
 };
 
 /// Sends "kill NAME" or "restart NAME" to the launcher running in run_dir (through its
