@@ -1,9 +1,10 @@
 #pragma once
 // The fleet launcher: starts every process of a run as a child (plant, central, two groups,
-// N agents) around an in-process DDS discovery server, waits until every process has matched
-// the topics it needs, starts the lock-step, shows progress, injects the scenario's faults,
-// sees children die at once (waitpid) and publishes it, ends every process, and writes
-// summary.json. Children die with the launcher (PR_SET_PDEATHSIG).
+// N agents) around the fleet's DDS discovery server (maptr_discovery), waits until every
+// process has matched the topics it needs, starts the lock-step, shows progress, injects the
+// scenario's faults at the plant's fault gates, sees children die at once (wait4) and
+// publishes it, ends every process, and writes summary.json. Children die with the launcher
+// (PR_SET_PDEATHSIG). The units it is made of are in deploy/fleet/.
 #include <spdlog/logger.h>
 
 #include <nlohmann/json.hpp>
