@@ -1,6 +1,6 @@
 #include "comm/dds.hpp"
 
-#include "comm/fleet_ids.hpp"
+#include "comm/fleet_guid.hpp"
 #include "comm/shm_files.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>

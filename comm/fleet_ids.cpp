@@ -1,33 +1,12 @@
 #include "comm/fleet_ids.hpp"
 
-#include <unistd.h>
-
 #include "config/scenario.hpp"
 
 namespace maptr::comm {
 
-namespace rtps = eprosima::fastrtps::rtps;
-
 namespace {
-constexpr rtps::octet kVendor[2] = {0x01, 0x0f};  // eProsima
 constexpr int kFirstAgentId = 6;
 const char* const kControllers[] = {"plant", "central", "group-L", "group-R"};
-
-void put_be32(rtps::octet* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<rtps::octet>(v >> (24 - 8 * i));
-}
-uint16_t host_id() {
-  char name[256] = {0};
-  gethostname(name, sizeof(name) - 1);
-  uint32_t h = 2166136261u;  // FNV-1a
-  for (const char* c = name; *c; ++c) h = (h ^ static_cast<unsigned char>(*c)) * 16777619u;
-  return static_cast<uint16_t>(h ^ (h >> 16));
-}
-uint32_t get_be32(const rtps::octet* p) {
-  uint32_t v = 0;
-  for (int i = 0; i < 4; ++i) v = (v << 8) | p[i];
-  return v;
-}
 }  // namespace
 
 int fleet_stride(int agents) { return kFirstAgentId + agents; }
@@ -49,30 +28,6 @@ std::string participant_name(int id, int agents) {
   if (base < kFirstAgentId) return kControllers[base - kPlantParticipantId];
   const int per_side = agents / 2;
   return config::agent_name((base - kFirstAgentId) / per_side, (base - kFirstAgentId) % per_side);
-}
-
-rtps::GuidPrefix_t fleet_guid_prefix(uint32_t fleet_id, int id) {
-  rtps::GuidPrefix_t p;
-  const uint16_t host = host_id();
-  p.value[0] = kVendor[0];
-  p.value[1] = kVendor[1];
-  p.value[2] = static_cast<rtps::octet>(host >> 8);
-  p.value[3] = static_cast<rtps::octet>(host & 0xff);
-  put_be32(p.value + 4, static_cast<uint32_t>(id));
-  put_be32(p.value + 8, fleet_id);
-  return p;
-}
-
-std::optional<int> fleet_participant(uint32_t fleet_id, const rtps::InstanceHandle_t& writer) {
-  const rtps::GUID_t guid = rtps::iHandle2GUID(writer);
-  const rtps::octet* v = guid.guidPrefix.value;
-  if (v[0] != kVendor[0] || v[1] != kVendor[1] || get_be32(v + 8) != fleet_id) return std::nullopt;
-  return static_cast<int>(get_be32(v + 4));
-}
-
-bool written_by(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer, const std::string& name) {
-  const auto id = fleet_participant(fleet_id, writer);
-  return id && participant_name(*id, agents) == name;
 }
 
 }  // namespace maptr::comm

@@ -1,6 +1,6 @@
 #include "comm/follower.hpp"
 
-#include "comm/fleet_ids.hpp"
+#include "comm/fleet_guid.hpp"
 
 #include <unistd.h>
 

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "comm/dds.hpp"
-#include "comm/fleet_ids.hpp"
+#include "comm/fleet_guid.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::comm {

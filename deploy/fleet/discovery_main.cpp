@@ -7,7 +7,6 @@
 // (OutputTrafficManager) hit an assertion within seconds; with shared memory beside UDP that
 // has been rare.
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <cstdio>
 #include <thread>
@@ -22,7 +21,8 @@ int main(int argc, char** argv) {
   app.add_option("--domain", o.domain, "DDS domain (default: MAPTR_DOMAIN)");
   CLI11_PARSE(app, argc, argv);
   if (o.discovery_server.empty()) {
-    std::fprintf(stderr, "maptr_discovery: no address: give --address HOST:PORT or set MAPTR_DISCOVERY_SERVER\n");
+    std::fprintf(stderr,
+                 "maptr_discovery: no address: give --address HOST:PORT or set MAPTR_DISCOVERY_SERVER\n");
     return 2;
   }
   o.is_server = true;  // transports as for the fleet (MAPTR_TRANSPORT)

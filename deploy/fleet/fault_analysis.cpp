@@ -1,37 +1,12 @@
-#include "deploy/faults.hpp"
+#include "deploy/fleet/fault_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <random>
+#include <map>
 #include <sstream>
 
 namespace maptr::deploy {
-
-std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s, int faults) {
-  std::mt19937 rng(seed);
-  std::vector<std::string> targets = {"group-L", "group-R", "central"};
-  for (int side = 0; side < 2; ++side)
-    for (int j = 0; j < s.robot.per_side(); ++j) targets.push_back(config::agent_name(side, j));
-  // Faults start once the robot is moving and leave time to recover before the end.
-  const double t0 = std::min(5.0, 0.2 * s.duration_s), t1 = std::max(t0, s.duration_s - 10.0);
-  std::uniform_real_distribution<double> when(t0, t1), back(2.0, 8.0);
-  std::uniform_int_distribution<std::size_t> who(0, targets.size() - 1);
-  std::vector<config::FaultSpec> out;
-  for (int i = 0; i < faults; ++i) {
-    const std::string target = targets[who(rng)];
-    const double at = std::round(when(rng) * 100.0) / 100.0;
-    const double again = std::min(s.duration_s, std::round((at + back(rng)) * 100.0) / 100.0);
-    // One outage per target: skip a target that is already scheduled to be down then.
-    bool overlaps = false;
-    for (std::size_t k = 0; k + 1 < out.size(); k += 2)
-      if (out[k].target == target && at <= out[k + 1].at_s + 0.5 && again >= out[k].at_s - 0.5) overlaps = true;
-    if (overlaps) continue;
-    out.push_back({target, "kill", at});
-    out.push_back({target, "restart", again});
-  }
-  return out;
-}
 
 namespace {
 
@@ -39,18 +14,37 @@ struct Row {
   double t, err_pct;
 };
 
+/// Trace columns the analysis reads.
+constexpr const char* kTime = "t_s";
+constexpr const char* kSpeed = "v_x_mps";
+constexpr const char* kRefL = "ref_L_radps";
+constexpr const char* kRefR = "ref_R_radps";
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  for (std::string f; std::getline(ss, f, ',');) out.push_back(f);
+  return out;
+}
+
+/// Speed error of every tick of the trace, %; none if a column is missing.
 std::vector<Row> speed_errors(const std::string& path, double r) {
   std::vector<Row> rows;
   std::ifstream in(path);
   std::string line;
-  std::getline(in, line);  // header
+  if (!std::getline(in, line)) return rows;
+  std::map<std::string, std::size_t> col;
+  const auto header = split(line);
+  for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+  for (const char* name : {kTime, kSpeed, kRefL, kRefR})
+    if (!col.count(name)) return rows;
+  const std::size_t need = std::max({col[kTime], col[kSpeed], col[kRefL], col[kRefR]}) + 1;
   while (std::getline(in, line)) {
-    std::vector<double> c;
-    std::stringstream ss(line);
-    for (std::string f; std::getline(ss, f, ',');) c.push_back(std::strtod(f.c_str(), nullptr));
-    if (c.size() < 11) continue;
-    const double ref = 0.5 * (c[9] + c[10]) * r;
-    rows.push_back({c[1], ref > 0.0 ? 100.0 * std::fabs(c[5] - ref) / ref : 0.0});
+    const auto f = split(line);
+    if (f.size() < need) continue;
+    auto at = [&](const char* name) { return std::strtod(f[col[name]].c_str(), nullptr); };
+    const double ref = 0.5 * (at(kRefL) + at(kRefR)) * r;
+    rows.push_back({at(kTime), ref > 0.0 ? 100.0 * std::fabs(at(kSpeed) - ref) / ref : 0.0});
   }
   return rows;
 }
@@ -79,7 +73,8 @@ void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, cons
     // Recovery window: until the next fault (or the end of the run).
     double until = t_end + 1.0;
     for (std::size_t k = 0; k < failures.size(); ++k)
-      if (k != i && failures[k].value("at_s", 0.0) > at) until = std::min(until, failures[k].value("at_s", 0.0));
+      if (k != i && failures[k].value("at_s", 0.0) > at)
+        until = std::min(until, failures[k].value("at_s", 0.0));
     double max_err = 0.0, last_out = -1.0, last_in = -1.0;
     for (const auto& r : rows) {
       if (r.t < at || r.t >= until) continue;

@@ -1,0 +1,31 @@
+#pragma once
+// GUID prefix of a fleet participant (12 bytes), laid out as Fast DDS lays out its own so
+// that its same-host and same-process tests keep working: the eProsima vendor id (2 bytes), a
+// host id (2 bytes, from the host name), the participant id (4 bytes, big-endian: unique per
+// process of the fleet) and the fleet id (a random 32-bit number the launcher draws per run,
+// big-endian). A sample's writer handle holds its writer's GUID, so a reader can tell which
+// process of its fleet wrote it. Without DDS Security any local process can forge a prefix:
+// this keeps other fleets and careless tools out, not attackers (README, "What a local user
+// can do").
+#include <fastdds/rtps/common/GuidPrefix_t.hpp>
+#include <fastdds/rtps/common/InstanceHandle.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "comm/fleet_ids.hpp"
+
+namespace maptr::comm {
+
+/// GUID prefix of participant `id` of fleet `fleet_id`.
+eprosima::fastrtps::rtps::GuidPrefix_t fleet_guid_prefix(uint32_t fleet_id, int id);
+
+/// Participant id behind a writer handle, if that writer belongs to fleet `fleet_id`.
+std::optional<int> fleet_participant(uint32_t fleet_id, const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
+
+/// True when `writer` belongs to the process `name` of fleet `fleet_id` (any of its starts).
+bool written_by(uint32_t fleet_id, int agents, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+                const std::string& name);
+
+}  // namespace maptr::comm

@@ -1,0 +1,122 @@
+#include "deploy/fleet/children.hpp"
+
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <stdexcept>
+#include <thread>
+
+extern char** environ;
+
+namespace maptr::deploy::fleet {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+constexpr std::chrono::milliseconds kEndPoll{20};
+constexpr std::chrono::milliseconds kStopPoll{10};
+}  // namespace
+
+Exit exit_of(pid_t pid, int st, long max_rss_kB) {
+  return {pid, WIFEXITED(st) ? WEXITSTATUS(st) : -1, WIFSIGNALED(st) ? WTERMSIG(st) : 0, max_rss_kB};
+}
+
+void record_exit(Child& c, const Exit& e) {
+  c.running = false;
+  c.exit_code = e.exit_code;
+  c.signal = e.signal;
+  c.max_rss_kB = std::max(c.max_rss_kB, e.max_rss_kB);
+}
+
+bool ended_cleanly(const Child& c) { return c.exit_code == 0 && c.signal == 0; }
+
+void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id) {
+  // Everything the child needs is prepared before fork(): between fork and exec the child of
+  // a multi-threaded process may only make async-signal-safe calls (no allocation).
+  const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
+  std::vector<std::string> env_store;
+  for (char** e = environ; *e; ++e) {
+    const std::string kv = *e;
+    if (!env.count(kv.substr(0, kv.find('=')))) env_store.push_back(kv);
+  }
+  for (const auto& [k, v] : env) env_store.push_back(k + "=" + v);
+  env_store.push_back("MAPTR_PARTICIPANT_ID=" + std::to_string(participant_id));
+  std::vector<char*> envp, argv;
+  for (auto& e : env_store) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  argv.push_back(const_cast<char*>(c.binary.c_str()));
+  for (auto& a : c.args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed for " + c.name);
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(1);
+    setpgid(0, 0);  // a Ctrl-C in the terminal reaches the launcher only; it ends the children
+    const int fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+      close(fd);
+    }
+    execve(argv[0], argv.data(), envp.data());
+    _exit(127);
+  }
+  c.pid = pid;
+  c.running = true;
+  c.exit_code = -1;
+  c.signal = 0;
+  ++c.starts;
+}
+
+std::optional<Exit> reap_one() {
+  int st = 0;
+  rusage ru{};
+  const pid_t pid = wait4(-1, &st, WNOHANG, &ru);
+  if (pid <= 0) return std::nullopt;
+  return exit_of(pid, st, ru.ru_maxrss);
+}
+
+void signal_all(const std::vector<Child>& kids, int sig) {
+  for (const auto& c : kids)
+    if (c.running) kill(c.pid, sig);
+}
+
+void wait_all(const std::vector<Child>& kids, double seconds, const std::function<void()>& reap) {
+  auto all_done = [&] {
+    return std::none_of(kids.begin(), kids.end(), [](const Child& c) { return c.running; });
+  };
+  const auto t0 = Clock::now();
+  while (!all_done() && since(t0) < seconds) {
+    reap();
+    std::this_thread::sleep_for(kEndPoll);
+  }
+}
+
+void stop_process(pid_t pid, double term_s) {
+  kill(pid, SIGTERM);
+  const auto t0 = Clock::now();
+  while (waitpid(pid, nullptr, WNOHANG) != pid) {
+    if (since(t0) > term_s) {
+      kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+      return;
+    }
+    std::this_thread::sleep_for(kStopPoll);
+  }
+}
+
+int ParticipantIds::take(int base, int starts) {
+  const int id = base + (starts % windows_) * stride_;
+  highest_ = std::max(highest_, id);
+  return id;
+}
+
+}  // namespace maptr::deploy::fleet

@@ -1,0 +1,83 @@
+#pragma once
+// The launcher's child processes: started with fork/exec (dying with the launcher through
+// PR_SET_PDEATHSIG, in a process group of their own, stdout and stderr to
+// RUN_DIR/logs/NAME.stderr, the fleet's environment plus MAPTR_PARTICIPANT_ID), reaped with
+// wait4 (exit code, signal, peak resident memory), and ended at the end of a run.
+#include <sys/types.h>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "comm/fleet_ids.hpp"
+
+namespace maptr::deploy::fleet {
+
+struct Child {
+  std::string name, binary;
+  std::vector<std::string> args;
+  uint8_t kind = 0, side = 0;  ///< msg::NODE_*, msg::SIDE_*
+  uint16_t index = 0;
+  pid_t pid = -1;
+  bool running = false;
+  bool external = false;  ///< started by the user, not by the launcher
+  int exit_code = -1, signal = 0;
+  long max_rss_kB = 0;
+  int starts = 0;
+  int base_id = 0;              ///< DDS participant id of its first start
+  bool awaiting_ready = false;  ///< restarted: MEMBER_STARTED goes out once it reports ready
+};
+
+/// How a reaped process ended.
+struct Exit {
+  pid_t pid = -1;
+  int exit_code = -1;  ///< exit status, or -1 if it did not exit
+  int signal = 0;      ///< the signal that ended it, or 0
+  long max_rss_kB = 0;
+};
+
+/// Exit from a wait status (as wait4 gives it) and the peak resident memory.
+Exit exit_of(pid_t pid, int wait_status, long max_rss_kB);
+/// Records an exit in its child (which no longer runs).
+void record_exit(Child& c, const Exit& e);
+/// A clean end: exit 0 without a signal (a process that saw the plant's last tick).
+bool ended_cleanly(const Child& c);
+
+using Environment = std::map<std::string, std::string>;
+
+/// Starts c (again): its environment is the launcher's with env and MAPTR_PARTICIPANT_ID.
+/// Throws std::runtime_error if fork fails.
+void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id);
+
+/// The next ended child of the launcher, without waiting; nullopt if none has ended.
+std::optional<Exit> reap_one();
+
+/// Sends sig to every running child.
+void signal_all(const std::vector<Child>& kids, int sig);
+/// Waits until no child runs or `seconds` have passed, calling reap in between.
+void wait_all(const std::vector<Child>& kids, double seconds, const std::function<void()>& reap);
+
+/// Ends one process: SIGTERM, then SIGKILL after term_s; reaps it.
+void stop_process(pid_t pid, double term_s);
+
+/// DDS participants of a fleet: discovery server, launcher, plant, central, 2 groups, agents.
+inline int fleet_participants(int agents) { return comm::fleet_stride(agents); }
+
+/// DDS participant ids: a fresh id (and so fresh ports) at every start of a process, so that a
+/// restarted process never reuses the shared-memory ports its killed predecessor left behind.
+/// Ids cycle through `windows` windows of `stride` ids (as many as keep the ports below 65536).
+class ParticipantIds {
+ public:
+  ParticipantIds(int stride, int windows) : stride_(stride), windows_(windows) {}
+  /// The id of the start number `starts` of the process of base id `base`; remembers the highest.
+  int take(int base, int starts);
+  int highest() const { return highest_; }
+
+ private:
+  int stride_, windows_, highest_ = 1;
+};
+
+}  // namespace maptr::deploy::fleet

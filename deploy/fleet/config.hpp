@@ -1,0 +1,59 @@
+#pragma once
+// The launcher's thresholds: wall-clock waits, wave sizes and the lease rule of a fleet of N
+// agents. Wall-clock limits only bound how long the launcher waits for processes; they never
+// decide what the simulation computes.
+#include <algorithm>
+#include <chrono>
+#include <cstddef>
+
+namespace maptr::deploy::fleet {
+
+struct FleetConfig {
+  /// Discovery (every process ready) gives up after base + per_agent * N, s.
+  double discovery_timeout_base_s = 30.0;
+  double discovery_timeout_per_agent_s = 0.5;
+  /// Agents per launch wave (the first wave also carries the plant, central and both groups).
+  std::size_t wave_size = 32;
+  /// The next wave starts when the previous one is ready, or after this wall time, s.
+  double wave_wait_s = 20.0;
+  /// The discovery server must listen on its port within this wall time after its start, s.
+  double discovery_listen_s = 10.0;
+  /// Lease of every participant, max(lease_min_s, lease_per_agent_s * N), s: on two cores a
+  /// large fleet starves participants for seconds.
+  double lease_min_s = 2.0;
+  double lease_per_agent_s = 0.05;
+  /// A dead discovery server starts again after this many leases: by then every client has
+  /// dropped it and registers anew with the new one.
+  double discovery_restart_leases = 1.5;
+  /// A fault gate waits at most base + per_agent * N for killed processes to end and restarted
+  /// ones to report ready, s; then the plant goes on.
+  double restart_ready_base_s = 30.0;
+  double restart_ready_per_agent_s = 0.5;
+  /// End of a run: wall time the children get to end on their own after a clean run, s.
+  double end_clean_s = 10.0;
+  /// ... after an aborted run (they have not seen a last tick), s.
+  double end_aborted_s = 0.5;
+  /// ... after SIGTERM, then after SIGKILL, s.
+  double end_term_s = 3.0;
+  double end_kill_s = 5.0;
+  /// The discovery server gets this long after SIGTERM before SIGKILL, s.
+  double discovery_term_s = 3.0;
+  /// "auto" transport: shared memory up to this many agents, UDP above.
+  int shm_max_agents = 64;
+  /// Period of the progress line, s.
+  double progress_period_s = 1.0;
+  /// Poll periods of the discovery loop, the run loop and a fault gate's wait.
+  std::chrono::milliseconds discovery_poll{50};
+  std::chrono::milliseconds run_poll{20};
+  std::chrono::milliseconds gate_poll{10};
+
+  double discovery_timeout_s(int agents) const {
+    return discovery_timeout_base_s + discovery_timeout_per_agent_s * agents;
+  }
+  double lease_s(int agents) const { return std::max(lease_min_s, lease_per_agent_s * agents); }
+  double restart_ready_s(int agents) const {
+    return restart_ready_base_s + restart_ready_per_agent_s * agents;
+  }
+};
+
+}  // namespace maptr::deploy::fleet

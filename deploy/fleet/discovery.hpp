@@ -1,0 +1,59 @@
+#pragma once
+// The fleet's own DDS discovery server (maptr_discovery, participant id 0 of its window),
+// started first and ended last: clients find only what they need through it. It listens on a
+// free UDP port of 127.0.0.1. When it dies during a run the launcher starts it again, once
+// every client's lease on the dead server has expired (restart_delay_s later): a client that
+// still counts the old server as alive would ignore the new one (its sequence numbers start
+// again from 1); one that dropped it registers anew.
+#include <chrono>
+#include <optional>
+#include <string>
+
+#include "deploy/fleet/children.hpp"
+
+namespace maptr::deploy::fleet {
+
+/// A free UDP port on 127.0.0.1 (throws std::runtime_error if there is none).
+int free_udp_port();
+/// True once some process has bound UDP port `port` on 127.0.0.1.
+bool udp_port_bound(int port);
+
+class DiscoveryServer {
+ public:
+  /// binary: maptr_discovery; listen_s: how long start() waits for it to listen, s.
+  DiscoveryServer(const std::string& binary, const std::string& run_dir, int domain, double listen_s,
+                  double restart_delay_s);
+  ~DiscoveryServer();  ///< kills a server still running (a launch that failed half-way)
+  DiscoveryServer(const DiscoveryServer&) = delete;
+  DiscoveryServer& operator=(const DiscoveryServer&) = delete;
+
+  const std::string& address() const { return address_; }  ///< "127.0.0.1:PORT"
+  int port() const { return port_; }
+  pid_t pid() const { return c_.pid; }
+  bool running() const { return c_.running; }
+  int restarts() const { return restarts_; }
+
+  /// Starts it (again) with a fresh participant id; true once it listens.
+  bool start(const Environment& env, ParticipantIds& ids);
+  /// Starts it, or throws std::runtime_error (after killing a server that did not listen).
+  void start_or_throw(const Environment& env, ParticipantIds& ids);
+  /// A reaped process: true if it was the server. An unexpected death schedules a restart.
+  bool on_exit(const Exit& e, bool expected);
+  /// Starts it again if a restart is due; returns true if it tried (started tells whether it runs).
+  bool restart_if_due(const Environment& env, ParticipantIds& ids, bool& started);
+  /// Kills it (a fault).
+  void kill_now();
+  /// Ends it: SIGTERM, then SIGKILL after term_s.
+  void stop(double term_s);
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  Child c_;
+  std::string run_dir_, address_;
+  int port_;
+  double listen_s_, restart_delay_s_;
+  int restarts_ = 0;
+  std::optional<Clock::time_point> restart_at_;
+};
+
+}  // namespace maptr::deploy::fleet

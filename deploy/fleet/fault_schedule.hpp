@@ -1,0 +1,63 @@
+#pragma once
+// Fault injection, free of DDS and processes:
+//   - a random fault schedule reproducible from a seed (--chaos SEED);
+//   - the scenario's scheduled faults in time order: those due at a fault gate of the plant
+//     (the first tick at or after their time), and the record of every fault applied or
+//     skipped (the summary's "failures": {target, action, at_s, wall_ms[, skipped]});
+//   - what applying a fault means for its target in its present state.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "config/scenario.hpp"
+
+namespace maptr::deploy {
+
+/// Kills and restarts of agents and controllers (never the plant) at random simulated times,
+/// the same for the same seed and scenario. Every killed process is restarted 2-8 s later.
+std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s, int faults = 4);
+
+namespace fleet {
+
+/// Name under which the discovery server is a fault target.
+inline constexpr const char* kDiscoveryTarget = "discovery";
+
+/// A fault target's state when a fault is applied to it.
+struct TargetState {
+  bool known = false;     ///< a process of the fleet (or the discovery server)
+  bool external = false;  ///< started by the user, not the launcher's to kill or start
+  bool running = false;
+};
+
+/// What the launcher does for a fault: kill or start its target, or skip it (and why).
+struct FaultAction {
+  enum Kind { kKill, kRestart, kSkip } kind = kSkip;
+  std::string skipped;  ///< why it is skipped ("" unless kSkip)
+};
+
+/// The rule: a running target is killed, a dead one restarted; the discovery server is only
+/// killed (the launcher restarts it by itself); external processes are left alone.
+FaultAction decide_fault(const config::FaultSpec& f, const TargetState& s);
+
+/// The scheduled faults of a run, in time order, and the record of every fault.
+class FaultSchedule {
+ public:
+  explicit FaultSchedule(std::vector<config::FaultSpec> faults);  ///< stable-sorted by at_s
+
+  /// Takes out every scheduled fault due at a gate of simulated time gate_t (at_s <= gate_t).
+  std::vector<config::FaultSpec> due(double gate_t);
+  /// Records a fault applied at simulated time at_s (wall clock wall_ms, ms since the epoch).
+  void record(const config::FaultSpec& f, double at_s, double wall_ms, const FaultAction& a);
+  /// The run ended: every fault not yet due is recorded as skipped.
+  void close();
+
+  const nlohmann::json& records() const { return records_; }
+
+ private:
+  std::vector<config::FaultSpec> faults_;
+  std::size_t next_ = 0;
+  nlohmann::json records_ = nlohmann::json::array();
+};
+
+}  // namespace fleet
+}  // namespace maptr::deploy

@@ -1,0 +1,259 @@
+#include "deploy/fleet/fleet.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "comm/fleet_ids.hpp"
+#include "comm/shm_files.hpp"
+#include "deploy/fleet/shm_cleanup.hpp"
+
+namespace maptr::deploy::fleet {
+
+static_assert(kL2Ok == msg::L2_OK && kL2Infeasible == msg::L2_INFEASIBLE, "Level-2 status codes");
+
+namespace {
+/// Processes before the agents in launch order: plant, central, group-L, group-R.
+constexpr std::size_t kControllers = 4;
+void on_signal(int) { interrupted().store(true); }
+}  // namespace
+
+std::atomic<bool>& interrupted() {
+  static std::atomic<bool> flag{false};
+  return flag;
+}
+
+GuidPrefix writer_prefix(const eprosima::fastrtps::rtps::InstanceHandle_t& h) {
+  const auto guid = eprosima::fastrtps::rtps::iHandle2GUID(h);
+  GuidPrefix p{};
+  std::copy(std::begin(guid.guidPrefix.value), std::end(guid.guidPrefix.value), p.begin());
+  return p;
+}
+
+Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg)
+    : o_(o),
+      sc_(o.scenario),
+      log_(log),
+      cfg_(cfg),
+      cfg_path_(o.run_dir + "/scenario.yaml"),
+      ids_(fleet_participants(o.scenario.robot.agents),
+           (comm::rtps_max_participant_id(o.domain) + 1) / fleet_participants(o.scenario.robot.agents)),
+      schedule_(o.scenario.faults) {
+  const int agents = sc_.robot.agents;
+  std::filesystem::create_directories(o.run_dir + "/logs");
+  std::ofstream(cfg_path_) << config::to_yaml(sc_);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  clean_shm_before_run(log);
+  // Restarts cycle through as many participant-id windows as stay below port 65536.
+  if ((comm::rtps_max_participant_id(o.domain) + 1) / fleet_participants(agents) < 1)
+    throw std::runtime_error(domain_problem(o.domain, agents));
+  ds_ = std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
+                                          cfg.discovery_listen_s,
+                                          cfg.discovery_restart_leases * cfg.lease_s(agents));
+  // Participant ids: 0 the discovery server, 1 the launcher, then the fleet.
+  dds_.domain = o.domain;
+  dds_.discovery_server = ds_->address();
+  dds_.participant_id = comm::kLauncherParticipantId;
+  // The fleet id makes every participant's GUID prefix say which process of this fleet it is
+  // (comm/fleet_guid.hpp): followers take ticks only from the plant's writer.
+  dds_.fleet_id = std::random_device{}() | 1u;
+  dds_.lease_s = cfg.lease_s(agents);
+  rec_.transport = o.transport != "auto" ? o.transport : (agents <= cfg.shm_max_agents ? "shm" : "udp");
+  rec_.chaos_seed = o.chaos_seed;
+  dds_.shm = rec_.transport == "shm";
+  env_ = {{"MAPTR_FLEET_ID", std::to_string(dds_.fleet_id)},
+          {"MAPTR_TRANSPORT", rec_.transport},
+          {"MAPTR_DOMAIN", std::to_string(o.domain)},
+          {"MAPTR_DISCOVERY_SERVER", dds_.discovery_server},
+          {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)}};
+  ds_->start_or_throw(env_, ids_);
+  participant_ = std::make_unique<comm::Participant>("launcher", dds_);
+  auto& p = *participant_;
+  p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &ready_);
+  p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &ticks_);
+  w_member_ =
+      p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched);
+  w_control_ = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
+  p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &gates_);
+  make_children();
+  t_launch_ = Clock::now();
+}
+
+Fleet::~Fleet() {
+  signal_all(kids_, SIGKILL);  // only after a launch that failed half-way: end() ended them
+  participant_.reset();
+}
+
+double Fleet::since(Clock::time_point t0) const {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void Fleet::make_children() {
+  const std::vector<std::string> common = {"--config", cfg_path_, "--run-dir", o_.run_dir};
+  auto add = [&](const std::string& name, const std::string& bin, std::vector<std::string> extra,
+                 uint8_t kind, uint8_t side, uint16_t index) {
+    Child c;
+    c.name = name;
+    c.binary = o_.bin_dir + "/" + bin;
+    c.args = common;
+    c.args.insert(c.args.end(), extra.begin(), extra.end());
+    c.kind = kind;
+    c.side = side;
+    c.index = index;
+    c.base_id = comm::base_participant_id(name, sc_.robot.agents);
+    c.external = std::find(o_.external.begin(), o_.external.end(), name) != o_.external.end();
+    if (!std::filesystem::exists(c.binary)) throw std::runtime_error("missing process binary " + c.binary);
+    kids_.push_back(c);
+  };
+  add("plant", "maptr_plant", {}, msg::NODE_PLANT, 0, 0);
+  add("central", "maptr_central", {}, msg::NODE_CENTRAL, 0, 0);
+  add("group-L", "maptr_group", {"--side", "L"}, msg::NODE_GROUP, 0, 0);
+  add("group-R", "maptr_group", {"--side", "R"}, msg::NODE_GROUP, 1, 0);
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j < sc_.robot.per_side(); ++j) {
+      const std::string n = config::agent_name(s, j);
+      add(n, "maptr_agent", {"--id", n}, msg::NODE_AGENT, static_cast<uint8_t>(s), static_cast<uint16_t>(j));
+    }
+}
+
+void Fleet::write_fleet() const {
+  // The fleet's coordinates, for tools and for processes started by hand.
+  nlohmann::json fleet = {{"launcher_pid", getpid()},
+                          {"domain", o_.domain},
+                          {"discovery_server", ds_->address()},
+                          {"discovery_server_pid", ds_->pid()},
+                          {"lease_s", dds_.lease_s},
+                          {"fleet_id", dds_.fleet_id},
+                          {"config", cfg_path_},
+                          {"run_dir", o_.run_dir},
+                          {"bin_dir", o_.bin_dir}};
+  for (const auto& c : kids_)
+    fleet["processes"].push_back(
+        {{"name", c.name}, {"pid", c.pid}, {"external", c.external}, {"participant_id", c.base_id}});
+  std::ofstream(o_.run_dir + "/fleet.json.tmp") << fleet.dump(2) << "\n";
+  // Readers never see half a file.
+  std::filesystem::rename(o_.run_dir + "/fleet.json.tmp", o_.run_dir + "/fleet.json");
+}
+
+void Fleet::spawn_child(Child& c) { spawn(c, o_.run_dir, env_, ids_.take(c.base_id, c.starts)); }
+
+void Fleet::spawn_wave(LaunchWaves::Range r) {
+  for (std::size_t i = r.begin; i < r.end; ++i)
+    if (!kids_[i].external) spawn_child(kids_[i]);
+  last_wave_ = Clock::now();
+  write_fleet();
+}
+
+void Fleet::print_external_commands() const {
+  for (const auto& c : kids_) {
+    if (!c.external) continue;
+    std::string cmd;
+    for (const auto& [k, v] : env_) cmd += k + "=" + v + " ";
+    cmd += "MAPTR_PARTICIPANT_ID=" + std::to_string(c.base_id) + " " + c.binary;
+    for (const auto& a : c.args) cmd += " " + a;
+    std::fprintf(stderr, "maptr: waiting for %s; start it with:\n  %s\n", c.name.c_str(), cmd.c_str());
+    log_.info("external {}: {}", c.name, cmd);
+  }
+}
+
+void Fleet::start_processes() {
+  waves_ = std::make_unique<LaunchWaves>(kids_.size(), kControllers, cfg_.wave_size, cfg_.wave_wait_s);
+  spawn_wave(waves_->first());
+  print_external_commands();
+  fifo_ = std::make_unique<ControlFifo>(o_.run_dir);
+  log_.info("launching {} processes in waves (discovery server {})", kids_.size(), ds_->address());
+  if (o_.progress)
+    std::fprintf(stderr, "maptr: launched %zu processes (%d agents, 2 groups, central, plant)\n",
+                 kids_.size(), sc_.robot.agents);
+}
+
+void Fleet::take_ready() {
+  const Child& plant = kids_.front();
+  for (auto& [r, h] : ready_.drain()) {
+    if (!r.ready()) continue;
+    ready_names_.insert(r.name());
+    for (auto& c : kids_)
+      if (c.external && c.name == r.name()) c.pid = static_cast<pid_t>(r.pid());
+    // The plant's participant: its ticks and gates are the only ones the launcher follows.
+    if (r.name() == plant.name && static_cast<pid_t>(r.pid()) == plant.pid)
+      clock_.learn_plant(writer_prefix(h));
+  }
+}
+
+std::string Fleet::not_ready() const {
+  std::string missing;
+  for (const auto& c : kids_)
+    if (!ready_names_.count(c.name)) missing += (missing.empty() ? "" : " ") + c.name;
+  return missing;
+}
+
+bool Fleet::discover() {
+  seen_ = signal_.count();
+  const double timeout = cfg_.discovery_timeout_s(sc_.robot.agents);
+  while (ready_names_.size() < kids_.size()) {
+    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
+    take_ready();
+    reap(false);
+    std::vector<bool> ready(kids_.size());
+    for (std::size_t i = 0; i < kids_.size(); ++i)
+      ready[i] = kids_[i].external || ready_names_.count(kids_[i].name);
+    if (const auto r = waves_->next(ready, since(last_wave_)); !r.empty()) {
+      spawn_wave(r);
+      log_.info("launched agents up to {} of {}", r.end - kControllers, kids_.size() - kControllers);
+    }
+    bool early_death = false;
+    for (std::size_t i = 0; i < waves_->started(); ++i)
+      if (!kids_[i].running && !kids_[i].external) early_death = true;
+    if (early_death || interrupted().load() || since(t_launch_) > timeout) {
+      rec_.status = interrupted().load() ? "aborted: interrupted during discovery"
+                    : early_death        ? "aborted: a process died during discovery (see logs/)"
+                                         : "aborted: discovery timed out; not ready: " + not_ready();
+      break;
+    }
+  }
+  rec_.discovery_s = since(t_launch_);
+  return rec_.status == "ok";
+}
+
+void Fleet::start_run() {
+  log_.info("all {} processes matched after {:.2f} s", kids_.size(), rec_.discovery_s);
+  if (o_.progress)
+    std::fprintf(stderr, "maptr: all %zu processes matched in %.2f s; starting\n", kids_.size(),
+                 rec_.discovery_s);
+  msg::Control c;
+  c.command(msg::CONTROL_START);
+  c.seq(1);
+  w_control_->write(&c);
+}
+
+void Fleet::end() {
+  // The plant's last tick tells every process to end; then SIGTERM, then SIGKILL.
+  const auto reap_expected = [this] { reap(true); };
+  wait_all(kids_, rec_.status == "ok" ? cfg_.end_clean_s : cfg_.end_aborted_s, reap_expected);
+  signal_all(kids_, SIGTERM);
+  wait_all(kids_, cfg_.end_term_s, reap_expected);
+  signal_all(kids_, SIGKILL);
+  wait_all(kids_, cfg_.end_kill_s, reap_expected);
+  fifo_.reset();
+  participant_.reset();
+  ds_->stop(cfg_.discovery_term_s);  // the discovery server goes last
+  clean_shm_after_run(o_.domain, ids_.highest(), ds_->port(), log_);
+}
+
+nlohmann::json Fleet::summary() {
+  rec_.discovery_restarts = ds_->restarts();
+  rec_.last_tick = clock_.state();
+  rec_.failures = schedule_.records();
+  const nlohmann::json s = build_summary(sc_, MAPTR_SOURCE_DIR, rec_, o_.run_dir, kids_);
+  std::ofstream(o_.run_dir + "/summary.json") << s.dump(2) << "\n";
+  log_.info("run ended: {}", s.value("status", ""));
+  return s;
+}
+
+}  // namespace maptr::deploy::fleet

@@ -1,0 +1,106 @@
+#pragma once
+// One fleet run, the DDS side of the launcher: the launcher's participant (a client of the
+// fleet's discovery server), the children, the launch waves, the run loop (the plant's clock,
+// the control FIFO, the fault gates, deaths), the end of every process and the summary.
+// launch() drives it step by step.
+#include <spdlog/logger.h>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "comm/dds.hpp"
+#include "deploy/fleet/children.hpp"
+#include "deploy/fleet/config.hpp"
+#include "deploy/fleet/control_fifo.hpp"
+#include "deploy/fleet/discovery.hpp"
+#include "deploy/fleet/fault_schedule.hpp"
+#include "deploy/fleet/launcher.hpp"
+#include "deploy/fleet/plant_clock.hpp"
+#include "deploy/fleet/summary.hpp"
+#include "deploy/fleet/waves.hpp"
+#include "idl/maptrPubSubTypes.h"
+
+namespace maptr::deploy::fleet {
+
+/// The GUID prefix of the participant of the writer behind a DDS instance handle.
+GuidPrefix writer_prefix(const eprosima::fastrtps::rtps::InstanceHandle_t& h);
+
+class Fleet {
+ public:
+  /// Sets up the run directory, the discovery server and the launcher's participant.
+  Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg = {});
+  ~Fleet();
+
+  /// Starts the first wave and opens the control FIFO.
+  void start_processes();
+  /// Waits until every process is ready (starting the next waves); false if the run aborted.
+  bool discover();
+  /// Sends CONTROL_START.
+  void start_run();
+  /// Runs until the plant ends (or the run is interrupted).
+  void run();
+  /// Ends every process, then the discovery server; removes the fleet's shared-memory ports.
+  void end();
+  /// Builds summary.json and writes it to the run directory.
+  nlohmann::json summary();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void make_children();
+  void write_fleet() const;
+  void spawn_child(Child& c);
+  void spawn_wave(LaunchWaves::Range r);
+  void print_external_commands() const;
+  void take_ready();
+  void announce_restarted();
+  void reap(bool expected);
+  void on_exit(const Exit& e, bool expected);
+  void publish_member(const Child& c, uint8_t kind);
+  void apply_fault(const config::FaultSpec& f, double at_s);
+  void open_gate(const msg::FaultGate& g);
+  bool gate_pending(const std::vector<std::string>& killed) const;
+  void take_ticks();
+  void take_commands();
+  void print_progress();
+  std::string not_ready() const;
+  Child* find(const std::string& name);
+  double since(Clock::time_point t0) const;
+
+  const LaunchOptions& o_;
+  const config::Scenario& sc_;
+  spdlog::logger& log_;
+  FleetConfig cfg_;
+  std::string cfg_path_;
+  comm::DdsOptions dds_;
+  RunRecord rec_;
+  Environment env_;
+  ParticipantIds ids_;
+  std::unique_ptr<DiscoveryServer> ds_;
+  comm::Signal signal_;
+  comm::Inbox<msg::NodeReady> ready_{signal_};
+  comm::Inbox<msg::PlantTick> ticks_{signal_};
+  comm::Inbox<msg::FaultGate> gates_{signal_};
+  std::unique_ptr<comm::Participant> participant_;
+  eprosima::fastdds::dds::DataWriter* w_member_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* w_control_ = nullptr;
+  std::vector<Child> kids_;
+  std::unique_ptr<LaunchWaves> waves_;
+  std::unique_ptr<ControlFifo> fifo_;
+  FaultSchedule schedule_;
+  PlantClock clock_;
+  std::set<std::string> ready_names_;
+  Clock::time_point t_launch_, t_run_, last_wave_, last_print_;
+  uint64_t seen_ = 0, member_seq_ = 0, control_seq_ = 1;
+  bool plant_done_ = false;
+  long reported_rejected_ = 0;
+};
+
+/// Set by SIGINT/SIGTERM: the run ends.
+std::atomic<bool>& interrupted();
+
+}  // namespace maptr::deploy::fleet

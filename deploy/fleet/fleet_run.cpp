@@ -1,0 +1,191 @@
+// The run of a fleet: the plant's clock, commands, fault gates, deaths and restarts.
+#include <csignal>
+#include <cstdio>
+
+#include "deploy/fleet/fleet.hpp"
+
+namespace maptr::deploy::fleet {
+
+namespace {
+double wall_ms_now() {
+  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+}  // namespace
+
+Child* Fleet::find(const std::string& name) {
+  for (auto& c : kids_)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+void Fleet::publish_member(const Child& c, uint8_t kind) {
+  msg::MembershipEvent e;
+  e.seq(++member_seq_);
+  e.name(c.name);
+  e.node_kind(c.kind);
+  e.side(c.side);
+  e.index(c.index);
+  e.kind(kind);
+  e.wall_s(since(t_launch_));
+  w_member_->write(&e);
+}
+
+void Fleet::reap(bool expected) {
+  bool started = false;
+  if (!expected && ds_->restart_if_due(env_, ids_, started)) {
+    if (started)
+      log_.info("the discovery server runs again (pid {})", ds_->pid());
+    else
+      log_.error("the discovery server did not start again");
+  }
+  while (const auto e = reap_one()) on_exit(*e, expected);
+}
+
+void Fleet::on_exit(const Exit& e, bool expected) {
+  if (ds_->on_exit(e, expected)) {
+    // Established matches survive; the restarted server lets the clients re-register.
+    if (!expected)
+      log_.warn("the discovery server (pid {}) died: exit {} signal {}; starting it again", e.pid,
+                e.exit_code, e.signal);
+    return;
+  }
+  Child* c = nullptr;
+  for (auto& k : kids_)
+    if (k.pid == e.pid && k.running) c = &k;
+  if (!c) return;
+  record_exit(*c, e);
+  if (c == &kids_.front()) plant_done_ = true;
+  // A clean exit is a process that saw the plant's last tick; anything else is a failure.
+  if (!expected && !ended_cleanly(*c) && c != &kids_.front()) {
+    publish_member(*c, msg::MEMBER_DIED);
+    log_.warn("{} (pid {}) died: exit {} signal {}", c->name, e.pid, c->exit_code, c->signal);
+  }
+}
+
+void Fleet::announce_restarted() {
+  // Restarted processes report ready: the plant may wait for them from now on.
+  for (auto& [r, h] : ready_.drain())
+    for (auto& c : kids_)
+      if (c.awaiting_ready && r.ready() && static_cast<pid_t>(r.pid()) == c.pid) {
+        c.awaiting_ready = false;
+        publish_member(c, msg::MEMBER_STARTED);
+        log_.info("{} (pid {}) restarted and ready", c.name, c.pid);
+      }
+}
+
+void Fleet::apply_fault(const config::FaultSpec& f, double at_s) {
+  const double wall_ms = wall_ms_now();
+  const bool discovery = f.target == kDiscoveryTarget;
+  Child* c = discovery ? nullptr : find(f.target);
+  TargetState s;
+  if (discovery) s = {true, false, ds_->running()};
+  if (c) s = {true, c->external, c->running};
+  const FaultAction a = decide_fault(f, s);
+  if (a.kind == FaultAction::kKill && discovery) {
+    ds_->kill_now();
+    log_.warn("fault: killed the discovery server (pid {}) at t={:.2f} s", ds_->pid(), at_s);
+  } else if (a.kind == FaultAction::kKill) {
+    kill(c->pid, SIGKILL);
+    log_.warn("fault: killed {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
+  } else if (a.kind == FaultAction::kRestart) {
+    spawn_child(*c);
+    c->awaiting_ready = true;
+    log_.warn("fault: restarted {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
+  }
+  schedule_.record(f, at_s, wall_ms, a);
+}
+
+bool Fleet::gate_pending(const std::vector<std::string>& killed) const {
+  for (const auto& c : kids_) {
+    if (c.awaiting_ready && c.running) return true;
+    if (c.running && std::find(killed.begin(), killed.end(), c.name) != killed.end()) return true;
+  }
+  return false;
+}
+
+void Fleet::open_gate(const msg::FaultGate& g) {
+  // Apply every scheduled fault due at the gate's time, wait until each killed process is
+  // reaped (its death published) and each restarted one is ready, then let the plant go on.
+  std::vector<std::string> killed;
+  for (const auto& f : schedule_.due(g.t())) {
+    if (f.action == "kill") killed.push_back(f.target);
+    apply_fault(f, g.t());
+  }
+  const auto t0 = Clock::now();
+  const double limit = cfg_.restart_ready_s(sc_.robot.agents);
+  for (;;) {
+    reap(false);
+    announce_restarted();
+    if (!gate_pending(killed) || interrupted().load() || plant_done_) break;
+    if (since(t0) > limit) {
+      log_.error(
+          "fault gate at t={:.2f} s: a killed process did not end or a restarted one did not report ready "
+          "within {:.0f} s; the plant goes on",
+          g.t(), limit);
+      break;
+    }
+    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.gate_poll);
+  }
+  msg::Control c;
+  c.command(msg::CONTROL_GATE_OPEN);
+  c.seq(++control_seq_);
+  c.tick(g.tick());
+  c.member_seq(member_seq_);
+  w_control_->write(&c);
+}
+
+void Fleet::take_ticks() {
+  for (auto& [t, h] : ticks_.drain())
+    clock_.on_tick(writer_prefix(h), {t.t(), t.v_x(), t.energy_J(), t.n_active_L(), t.n_active_R()});
+}
+
+void Fleet::take_commands() {
+  // Commands from `maptr kill|restart NAME` act at once, at the current simulated time.
+  for (const auto& c : fifo_->read()) {
+    if (!c.valid) {
+      log_.warn("ignored control command '{}'", c.action + " " + c.target);
+      continue;
+    }
+    log_.info("command: {} {}", c.action, c.target);
+    apply_fault(config::FaultSpec{c.target, c.action, clock_.state().t}, clock_.state().t);
+  }
+}
+
+void Fleet::print_progress() {
+  if (clock_.rejected() > reported_rejected_) {
+    log_.warn("ignored {} ticks or fault gates from a participant other than the plant's",
+              clock_.rejected() - reported_rejected_);
+    reported_rejected_ = clock_.rejected();
+  }
+  if (!o_.progress || since(last_print_) < cfg_.progress_period_s) return;
+  last_print_ = Clock::now();
+  const PlantState& s = clock_.state();
+  const double rtf = s.t / std::max(1e-9, since(t_run_));
+  std::fprintf(stderr, "maptr: t=%7.1f/%.0f s  RTF %6.1f  v=%6.3f m/s  active L%d R%d  E=%.1f kJ\n", s.t,
+               sc_.duration_s, rtf, s.v_x, s.active_L, s.active_R, s.energy_J / 1000.0);
+}
+
+void Fleet::run() {
+  // Scheduled faults act at the plant's fault gates (the first tick at or after their time,
+  // held until they are applied), so that they hit the same tick in every run.
+  t_run_ = last_print_ = Clock::now();
+  while (rec_.status == "ok" && !plant_done_) {
+    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.run_poll);
+    take_ticks();
+    take_commands();
+    for (auto& [g, h] : gates_.drain()) {
+      if (!clock_.from_plant(writer_prefix(h))) continue;
+      clock_.on_gate(g.t());
+      open_gate(g);
+    }
+    announce_restarted();
+    reap(false);
+    if (interrupted().load()) rec_.status = "aborted: interrupted";
+    print_progress();
+  }
+  rec_.run_wall_s = since(t_run_);
+  schedule_.close();
+}
+
+}  // namespace maptr::deploy::fleet

@@ -1,0 +1,48 @@
+#pragma once
+// The fleet launcher: starts every process of a run as a child (plant, central, two groups,
+// N agents) around the fleet's DDS discovery server (maptr_discovery), waits until every
+// process has matched the topics it needs, starts the lock-step, shows progress, injects the
+// scenario's faults at the plant's fault gates, sees children die at once (wait4) and
+// publishes it, ends every process, and writes summary.json. Children die with the launcher
+// (PR_SET_PDEATHSIG). The units it is made of are in deploy/fleet/.
+#include <spdlog/logger.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "config/scenario.hpp"
+
+namespace maptr::deploy {
+
+struct LaunchOptions {
+  config::Scenario scenario;
+  std::string run_dir;   ///< created if missing
+  std::string bin_dir;   ///< where maptr_agent & co. are
+  int domain = 0;        ///< DDS domain id
+  bool progress = true;  ///< print a progress line every second
+  /// Processes the launcher does not start: the user starts them (e.g. on another terminal or
+  /// host) with the command printed at launch; the fleet waits for them like for the others.
+  std::vector<std::string> external;
+  /// Data transport of the fleet: "shm", "udp" (loopback) or "auto": shared memory up to 64
+  /// agents, UDP above (with 128+ writers into the plant's port, Fast DDS's shared-memory port
+  /// lock times out on two cores and aborts the plant with a boost interprocess exception).
+  std::string transport = "auto";
+  long long chaos_seed = -1;  ///< recorded in the summary when the faults came from --chaos
+};
+
+/// Sends "kill NAME" or "restart NAME" to the launcher running in run_dir (through its
+/// control FIFO). Throws std::runtime_error when no fleet runs there.
+void send_command(const std::string& run_dir, const std::string& action, const std::string& target);
+
+/// Runs the fleet; returns the summary (also written to RUN_DIR/summary.json).
+nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log);
+
+/// Why a fleet of `agents` agents cannot run on DDS `domain` (its participants' ports would go
+/// above 65535), or "" if it can. launch() refuses such a fleet with this text.
+std::string domain_problem(int domain, int agents);
+
+/// Short human summary of a summary.json.
+std::string human_summary(const nlohmann::json& s);
+
+}  // namespace maptr::deploy

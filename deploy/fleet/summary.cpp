@@ -1,0 +1,223 @@
+#include "deploy/fleet/summary.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "deploy/fleet/fault_analysis.hpp"
+
+namespace maptr::deploy::fleet {
+
+namespace {
+
+/// Level-2 log columns read here.
+constexpr const char* kL2Status = "status";
+constexpr const char* kL2Ipopt = "ipopt_n_active";
+constexpr const char* kL2Oracle = "oracle_n_active";
+constexpr const char* kL2SolveMs = "solve_ms";
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  for (std::string f; std::getline(ss, f, ',');) out.push_back(f);
+  return out;
+}
+
+nlohmann::json level2_side(std::ifstream& in) {
+  std::string line;
+  std::getline(in, line);
+  std::map<std::string, std::size_t> col;
+  const auto header = split(line);
+  for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+  std::vector<double> ms;
+  int checked = 0, differs = 0, infeasible = 0;
+  const bool has_all =
+      col.count(kL2Status) && col.count(kL2Ipopt) && col.count(kL2Oracle) && col.count(kL2SolveMs);
+  while (has_all && std::getline(in, line)) {
+    const auto f = split(line);
+    if (f.size() < header.size()) continue;
+    auto at = [&](const char* name) { return std::atof(f[col[name]].c_str()); };
+    ms.push_back(at(kL2SolveMs));
+    const int status = static_cast<int>(at(kL2Status));
+    if (status == kL2Infeasible) ++infeasible;
+    if (status == kL2Ok && at(kL2Oracle) >= 0) {
+      ++checked;
+      if (static_cast<int>(at(kL2Ipopt)) != static_cast<int>(at(kL2Oracle))) ++differs;
+    }
+  }
+  nlohmann::json s = {{"decisions", ms.size()},
+                      {"infeasible", infeasible},
+                      {"oracle_checked", checked},
+                      {"oracle_differs", differs}};
+  if (!ms.empty()) {
+    std::sort(ms.begin(), ms.end());
+    auto q = [&](double p) {
+      return ms[std::min(ms.size() - 1, static_cast<std::size_t>(p * (ms.size() - 1) + 0.5))];
+    };
+    s["solve_ms_median"] = q(0.5);
+    s["solve_ms_p95"] = q(0.95);
+    s["solve_ms_max"] = ms.back();
+  }
+  return s;
+}
+
+std::string sha256_of(const std::string& path) {
+  const std::string cmd = "sha256sum '" + path + "'";
+  FILE* f = popen(cmd.c_str(), "r");
+  if (!f) return "";
+  char buf[128] = {0};
+  std::string out;
+  if (fgets(buf, sizeof(buf), f)) out = buf;
+  pclose(f);
+  return out.substr(0, out.find(' '));
+}
+
+/// The figures of the run from the plant's results, the launcher's last tick standing in.
+void add_run_figures(nlohmann::json& s, const nlohmann::json& plant, const RunRecord& r) {
+  const PlantState& last = r.last_tick;
+  s["sim_time_s"] = plant.value("sim_time_s", last.t);
+  s["wall_time_s"] = r.run_wall_s;
+  s["ticks"] = plant.value("ticks", 0);
+  s["real_time_factor"] = plant.value("sim_time_s", last.t) / std::max(1e-9, r.run_wall_s);
+  s["distance_m"] = plant.value("distance_m", 0.0);
+  s["energy_J"] = plant.value("energy_J", last.energy_J);
+  s["mileage_m_per_J"] =
+      plant.value("energy_J", 0.0) > 0 ? plant.value("distance_m", 0.0) / plant.value("energy_J", 1.0) : 0.0;
+  s["mean_active_agents"] = plant.value("mean_active_agents", 0.0);
+  s["active_agents"] =
+      plant.value("active_agents", nlohmann::json{{"L", last.active_L}, {"R", last.active_R}});
+  s["battery_discharge_mAh"] = plant.value("battery_discharge_mAh", nlohmann::json{{"L", 0}, {"R", 0}});
+}
+
+}  // namespace
+
+std::string final_status(const std::string& launch_status, const nlohmann::json& plant, const Child& pc) {
+  if (launch_status != "ok") return launch_status;
+  if (plant.empty())
+    return "aborted: the plant ended without results (exit " + std::to_string(pc.exit_code) + ", signal " +
+           std::to_string(pc.signal) + ")";
+  return plant.value("status", "unknown");
+}
+
+nlohmann::json read_json_object(const std::string& path) {
+  nlohmann::json j;
+  std::ifstream in(path);
+  if (in) try {
+      in >> j;
+    } catch (...) {
+    }
+  return j.is_object() ? j : nlohmann::json::object();
+}
+
+nlohmann::json level2_stats(const std::string& run_dir) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const char* side : {"L", "R"}) {
+    std::ifstream in(run_dir + "/level2-" + side + ".csv");
+    if (in) out[side] = level2_side(in);
+  }
+  return out;
+}
+
+std::string scenario_file(const std::string& source, const std::string& project_root) {
+  const std::string root = project_root + "/";
+  return source.rfind(root, 0) == 0 ? source.substr(root.size()) : source;
+}
+
+nlohmann::json processes_json(const std::vector<Child>& kids) {
+  nlohmann::json procs = nlohmann::json::array();
+  for (const auto& c : kids)
+    procs.push_back({{"name", c.name},
+                     {"pid", c.pid},
+                     {"exit_code", c.exit_code},
+                     {"signal", c.signal},
+                     {"max_rss_kB", c.max_rss_kB},
+                     {"starts", c.starts},
+                     {"external", c.external}});
+  return procs;
+}
+
+nlohmann::json build_summary(const config::Scenario& sc, const std::string& project_root, const RunRecord& r,
+                             const std::string& run_dir, const std::vector<Child>& kids) {
+  const nlohmann::json plant = read_json_object(run_dir + "/plant.json");
+  nlohmann::json s;
+  s["scenario"] = sc.name;
+  s["scenario_file"] = scenario_file(sc.source, project_root);
+  s["agents"] = sc.robot.agents;
+  s["mode"] = sc.mode;
+  s["motor"] = sc.robot.motor.type;
+  s["gross_mass_kg"] = sc.robot.gross_mass_kg;
+  s["tick_hz"] = sc.tick_hz;
+  add_run_figures(s, plant, r);
+  s["discovery_s"] = r.discovery_s;
+  s["discovery_server_restarts"] = r.discovery_restarts;
+  s["transport"] = r.transport;
+  nlohmann::json failures = r.failures;
+  analyse_faults(failures, plant.value("membership_events", nlohmann::json::array()), run_dir + "/trace.csv",
+                 sc.robot.wheel_radius_m);
+  s["failures"] = failures;
+  if (r.chaos_seed >= 0) s["chaos_seed"] = r.chaos_seed;
+  s["plant"] = plant;
+  s["level2"] = level2_stats(run_dir);
+  s["processes"] = processes_json(kids);
+  const std::string trace = run_dir + "/trace.csv";
+  s["trace_sha256"] = std::filesystem::exists(trace) ? sha256_of(trace) : "";
+  s["status"] = kids.empty() ? r.status : final_status(r.status, plant, kids.front());
+  return s;
+}
+
+}  // namespace maptr::deploy::fleet
+
+namespace maptr::deploy {
+
+std::string human_summary(const nlohmann::json& s) {
+  std::ostringstream os;
+  char buf[512];
+  long rss_max = 0;
+  double rss_sum = 0;
+  for (const auto& p : s["processes"]) {
+    rss_max = std::max<long>(rss_max, p.value("max_rss_kB", 0L));
+    rss_sum += p.value("max_rss_kB", 0L);
+  }
+  std::snprintf(buf, sizeof(buf),
+                "status      %s\n"
+                "scenario    %s: %d agents, motor %s, %.1f kg, mode %s\n"
+                "simulated   %.1f s in %.2f s wall (real-time factor %.1f); discovery %.2f s\n"
+                "distance    %.1f m, energy %.1f J, mileage %.4f m/J, mean active agents %.2f\n"
+                "battery     discharge L %.1f mAh, R %.1f mAh\n"
+                "processes   %zu, max RSS %.1f MB (mean %.1f MB)\n"
+                "trace       sha256 %s\n",
+                s.value("status", "").c_str(), s.value("scenario", "").c_str(), s.value("agents", 0),
+                s.value("motor", "").c_str(), s.value("gross_mass_kg", 0.0), s.value("mode", "").c_str(),
+                s.value("sim_time_s", 0.0), s.value("wall_time_s", 0.0), s.value("real_time_factor", 0.0),
+                s.value("discovery_s", 0.0), s.value("distance_m", 0.0), s.value("energy_J", 0.0),
+                s.value("mileage_m_per_J", 0.0), s.value("mean_active_agents", 0.0),
+                s["battery_discharge_mAh"].value("L", 0.0), s["battery_discharge_mAh"].value("R", 0.0),
+                s["processes"].size(), rss_max / 1024.0,
+                s["processes"].empty() ? 0.0 : rss_sum / 1024.0 / s["processes"].size(),
+                s.value("trace_sha256", "").c_str());
+  os << buf;
+  if (s.contains("level2") && s["level2"].is_object())
+    for (const auto& [side, l2] : s["level2"].items()) {
+      if (l2.value("decisions", 0) == 0) continue;
+      std::snprintf(buf, sizeof(buf), "level 2 %s   %d decisions, Ipopt median %.1f ms (max %.1f)%s%s\n",
+                    side.c_str(), l2.value("decisions", 0), l2.value("solve_ms_median", 0.0),
+                    l2.value("solve_ms_max", 0.0),
+                    l2.value("oracle_checked", 0) > 0
+                        ? (", oracle differed " + std::to_string(l2.value("oracle_differs", 0)) + " of " +
+                           std::to_string(l2.value("oracle_checked", 0)))
+                              .c_str()
+                        : "",
+                    l2.value("infeasible", 0) > 0
+                        ? (", infeasible " + std::to_string(l2.value("infeasible", 0)) +
+                           " times: the load needs more than the live agents give, all of them ran")
+                              .c_str()
+                        : "");
+      os << buf;
+    }
+  return os.str();
+}
+
+}  // namespace maptr::deploy

@@ -1,0 +1,62 @@
+#pragma once
+// summary.json of a run: the scenario, the plant's results (RUN_DIR/plant.json), the launch
+// (discovery time, restarts of the discovery server, transport), every fault with its
+// analysis, the Level-2 figures of the groups, every process's end and the trace's hash.
+// Experiments and tests read its keys. Free of DDS.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "config/scenario.hpp"
+#include "deploy/fleet/children.hpp"
+#include "deploy/fleet/plant_clock.hpp"
+
+namespace maptr::deploy::fleet {
+
+/// Level-2 status codes in the groups' logs (msg::L2_OK, msg::L2_INFEASIBLE; the DDS side
+/// checks that they agree).
+inline constexpr int kL2Ok = 1;
+inline constexpr int kL2Infeasible = 2;
+
+/// What the launcher saw of a run.
+struct RunRecord {
+  std::string status = "ok";  ///< "ok" or "aborted: ..." as the launcher ended the run
+  double discovery_s = 0.0;   ///< wall time until every process was ready, s
+  double run_wall_s = 0.0;    ///< wall time from the start to the plant's end, s
+  int discovery_restarts = 0;
+  std::string transport;                              ///< "shm" or "udp"
+  long long chaos_seed = -1;                          ///< recorded when >= 0
+  PlantState last_tick;                               ///< the plant's last tick the launcher saw
+  nlohmann::json failures = nlohmann::json::array();  ///< the fault records
+};
+
+/// The run's status: the launcher's if it aborted, else the plant's ("unknown" without one),
+/// or an abort naming the plant's exit when the plant left no results.
+std::string final_status(const std::string& launch_status, const nlohmann::json& plant,
+                         const Child& plant_child);
+
+/// A JSON object from a file; an empty object if the file is missing or not an object.
+nlohmann::json read_json_object(const std::string& path);
+
+/// Level-2 figures from the groups' level2-<side>.csv: decisions, Ipopt solve time (median,
+/// p95, max) and, where the oracle ran on a solved problem, how often Ipopt's integer differed.
+nlohmann::json level2_stats(const std::string& run_dir);
+
+/// A scenario file of the project by its path in the project (results are committed and must
+/// not carry the paths of the machine that made them); others as given.
+std::string scenario_file(const std::string& source, const std::string& project_root);
+
+/// Every process's end: name, pid, exit_code, signal, max_rss_kB, starts, external.
+nlohmann::json processes_json(const std::vector<Child>& kids);
+
+/// The summary of a run (kids.front() is the plant); the fault records are analysed against
+/// the plant's membership events and RUN_DIR/trace.csv.
+nlohmann::json build_summary(const config::Scenario& sc, const std::string& project_root, const RunRecord& r,
+                             const std::string& run_dir, const std::vector<Child>& kids);
+
+}  // namespace maptr::deploy::fleet
+
+namespace maptr::deploy {
+/// Short human summary of a summary.json.
+std::string human_summary(const nlohmann::json& s);
+}  // namespace maptr::deploy

@@ -1,0 +1,139 @@
+// Fault schedule, chaos schedule and fault analysis of the launcher (deploy/fleet/).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "deploy/fleet/fault_analysis.hpp"
+#include "deploy/fleet/fault_schedule.hpp"
+
+using maptr::config::FaultSpec;
+using namespace maptr::deploy;
+using namespace maptr::deploy::fleet;
+
+TEST(FleetFaultSchedule, FaultsDueAtAGateInTimeOrder) {
+  FaultSchedule s(
+      {{"L1", "restart", 8.0}, {"L1", "kill", 5.0}, {"R0", "kill", 5.0}, {"R0", "restart", 12.0}});
+  EXPECT_TRUE(s.due(4.99).empty());
+  const auto at5 = s.due(5.004);  // the first tick at or after 5 s
+  ASSERT_EQ(at5.size(), 2u);
+  EXPECT_EQ(at5[0].target, "L1");  // equal times keep their order
+  EXPECT_EQ(at5[1].target, "R0");
+  EXPECT_TRUE(s.due(5.01).empty()) << "a fault is due once";
+  const auto at9 = s.due(9.0);
+  ASSERT_EQ(at9.size(), 1u);
+  EXPECT_EQ(at9[0].action, "restart");
+}
+
+TEST(FleetFaultSchedule, FaultAfterTheEndIsRecordedAsSkipped) {
+  FaultSchedule s({{"L1", "kill", 5.0}, {"L1", "restart", 99.0}});
+  for (const auto& f : s.due(5.0)) s.record(f, 5.0, 1000.0, decide_fault(f, {true, false, true}));
+  s.close();
+  const auto& r = s.records();
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0]["target"], "L1");
+  EXPECT_DOUBLE_EQ(r[0]["at_s"].get<double>(), 5.0);
+  EXPECT_DOUBLE_EQ(r[0]["wall_ms"].get<double>(), 1000.0);
+  EXPECT_FALSE(r[0].contains("skipped"));
+  EXPECT_EQ(r[1]["action"], "restart");
+  EXPECT_DOUBLE_EQ(r[1]["at_s"].get<double>(), 99.0);
+  EXPECT_EQ(r[1]["skipped"], "scheduled after the end of the run");
+  EXPECT_FALSE(r[1].contains("wall_ms"));
+}
+
+TEST(FleetFaultSchedule, ActionDependsOnTheTargetsState) {
+  EXPECT_EQ(decide_fault({"L1", "kill", 1}, {true, false, true}).kind, FaultAction::kKill);
+  EXPECT_EQ(decide_fault({"L1", "restart", 1}, {true, false, false}).kind, FaultAction::kRestart);
+  EXPECT_EQ(decide_fault({"L1", "kill", 1}, {true, false, false}).skipped,
+            "target not in a state for this action");
+  EXPECT_EQ(decide_fault({"L1", "restart", 1}, {true, false, true}).kind, FaultAction::kSkip);
+  EXPECT_EQ(decide_fault({"nobody", "kill", 1}, {}).kind, FaultAction::kSkip);
+  EXPECT_EQ(decide_fault({"L1", "kill", 1}, {true, true, true}).skipped,
+            "an external process is not the launcher's to kill or start");
+  EXPECT_EQ(decide_fault({"discovery", "kill", 1}, {true, false, true}).kind, FaultAction::kKill);
+  EXPECT_EQ(decide_fault({"discovery", "restart", 1}, {true, false, false}).kind, FaultAction::kSkip);
+}
+
+TEST(FleetChaos, SameSeedSameScheduleOnlyValidTargets) {
+  maptr::config::Scenario sc;
+  sc.robot.agents = 8;
+  sc.duration_s = 40.0;
+  const auto a = chaos_schedule(7, sc, 6), b = chaos_schedule(7, sc, 6);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GE(a.size(), 2u);
+  std::set<std::string> valid = {"group-L", "group-R", "central"};
+  for (int side = 0; side < 2; ++side)
+    for (int j = 0; j < sc.robot.per_side(); ++j) valid.insert(maptr::config::agent_name(side, j));
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].target, b[i].target);
+    EXPECT_EQ(a[i].action, b[i].action);
+    EXPECT_DOUBLE_EQ(a[i].at_s, b[i].at_s);
+    EXPECT_TRUE(valid.count(a[i].target)) << a[i].target;
+    EXPECT_GE(a[i].at_s, 5.0);
+    EXPECT_LE(a[i].at_s, sc.duration_s);
+  }
+  // Kill and restart in pairs, the restart 2-8 s later (capped at the end).
+  for (std::size_t i = 0; i + 1 < a.size(); i += 2) {
+    EXPECT_EQ(a[i].action, "kill");
+    EXPECT_EQ(a[i + 1].action, "restart");
+    EXPECT_EQ(a[i].target, a[i + 1].target);
+    EXPECT_GE(a[i + 1].at_s - a[i].at_s, 2.0 - 0.01);
+    EXPECT_LE(a[i + 1].at_s - a[i].at_s, 8.0 + 0.01);
+  }
+  const auto other = chaos_schedule(8, sc, 6);
+  bool differs = other.size() != a.size();
+  for (std::size_t i = 0; !differs && i < a.size(); ++i) differs = other[i].at_s != a[i].at_s;
+  EXPECT_TRUE(differs) << "another seed gives another schedule";
+}
+
+namespace {
+/// A trace at 10 Hz, wheel radius 0.1 m, reference 10 rad/s (1 m/s); the speed drops to
+/// 0.9 m/s from t = 2.0 to t = 2.5 s (10 % error), else exact.
+std::string synthetic_trace() {
+  const std::string path = ::testing::TempDir() + "/fleet_trace.csv";
+  std::ofstream out(path);
+  out << "tick,t_s,x_m,y_m,theta_rad,v_x_mps,w_radps,phidot_L_radps,phidot_R_radps,ref_L_radps,ref_R_radps,"
+         "extra\n";
+  for (int k = 0; k <= 50; ++k) {
+    const double t = 0.1 * k;
+    const double v = (k >= 20 && k <= 25) ? 0.9 : 1.0;
+    out << k << "," << t << ",0,0,0," << v << ",0,10,10,10,10,0\n";
+  }
+  return path;
+}
+}  // namespace
+
+TEST(FleetFaultAnalysis, DetectionAndRecoveryWithinTheBand) {
+  const std::string trace = synthetic_trace();
+  nlohmann::json failures =
+      nlohmann::json::array({{{"target", "L1"}, {"action", "kill"}, {"at_s", 1.95}, {"wall_ms", 1000.0}},
+                             {{"target", "L1"}, {"action", "restart"}, {"at_s", 4.0}, {"wall_ms", 3000.0}}});
+  const nlohmann::json events =
+      nlohmann::json::array({{{"name", "L1"}, {"event", "died"}, {"t_s", 2.1}, {"wall_ms", 1250.0}},
+                             {{"name", "L1"}, {"event", "rejoined"}, {"t_s", 4.2}, {"wall_ms", 3100.0}}});
+  analyse_faults(failures, events, trace, 0.1);
+  const auto& kill = failures[0];
+  EXPECT_DOUBLE_EQ(kill["detected_s"].get<double>(), 2.1);
+  EXPECT_DOUBLE_EQ(kill["detect_wall_ms"].get<double>(), 250.0);
+  EXPECT_NEAR(kill["max_speed_error_pct"].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(kill["recovered_s"].get<double>(), 2.6, 1e-9);  // last tick out of the band + one tick
+  const auto& restart = failures[1];
+  EXPECT_DOUBLE_EQ(restart["detected_s"].get<double>(), 4.2);
+  EXPECT_NEAR(restart["recovered_s"].get<double>(), 4.0, 1e-9) << "it never left the band";
+  EXPECT_NEAR(restart["max_speed_error_pct"].get<double>(), 0.0, 1e-9);
+}
+
+TEST(FleetFaultAnalysis, UndetectedAndUnrecoveredAreNull) {
+  const std::string trace = synthetic_trace();
+  nlohmann::json failures = nlohmann::json::array({{{"target", "R0"}, {"action", "kill"}, {"at_s", 2.0}}});
+  analyse_faults(failures, nlohmann::json::array(), trace, 0.1, /*recovery_band_pct=*/5.0);
+  EXPECT_TRUE(failures[0]["detected_s"].is_null());
+  EXPECT_NEAR(failures[0]["recovered_s"].get<double>(), 2.6, 1e-9);
+  // A wider band than the drop: recovered at once.
+  analyse_faults(failures, nlohmann::json::array(), trace, 0.1, 20.0);
+  EXPECT_NEAR(failures[0]["recovered_s"].get<double>(), 2.0, 1e-9);
+  // No trace: no recovery.
+  analyse_faults(failures, nlohmann::json::array(), trace + ".missing", 0.1);
+  EXPECT_TRUE(failures[0]["recovered_s"].is_null());
+}

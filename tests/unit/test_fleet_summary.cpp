@@ -1,0 +1,122 @@
+// The launcher's children and the run summary (deploy/fleet/children.hpp, summary.hpp).
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "deploy/fleet/children.hpp"
+#include "deploy/fleet/summary.hpp"
+
+using namespace maptr::deploy::fleet;
+
+namespace {
+Child plant_child(int exit_code, int signal) {
+  Child c;
+  c.name = "plant";
+  c.exit_code = exit_code;
+  c.signal = signal;
+  return c;
+}
+
+/// Runs /bin/sh -c script as a child and reaps it.
+Child run_shell(const std::string& script, const std::string& dir) {
+  Child c;
+  c.name = "sh";
+  c.binary = "/bin/sh";
+  c.args = {"-c", script};
+  std::filesystem::create_directories(dir + "/logs");
+  spawn(c, dir, {{"FLEET_TEST", "42"}}, 7);
+  EXPECT_TRUE(c.running);
+  for (;;) {
+    const auto e = reap_one();
+    if (e && e->pid == c.pid) {
+      record_exit(c, *e);
+      return c;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+}  // namespace
+
+TEST(FleetSummary, StatusRules) {
+  const nlohmann::json plant = {{"status", "ok"}, {"sim_time_s", 10.0}};
+  EXPECT_EQ(final_status("ok", plant, plant_child(0, 0)), "ok");
+  EXPECT_EQ(final_status("ok", {{"status", "degraded: L"}}, plant_child(0, 0)), "degraded: L");
+  EXPECT_EQ(final_status("ok", {{"ticks", 3}}, plant_child(0, 0)), "unknown");
+  EXPECT_EQ(final_status("ok", nlohmann::json::object(), plant_child(-1, 9)),
+            "aborted: the plant ended without results (exit -1, signal 9)");
+  EXPECT_EQ(final_status("aborted: interrupted", plant, plant_child(0, 0)), "aborted: interrupted");
+}
+
+TEST(FleetSummary, ExitCodeAndSignalOfChildren) {
+  const std::string dir = ::testing::TempDir() + "/fleet_children";
+  const Child ok = run_shell("exit 0", dir);
+  EXPECT_EQ(ok.exit_code, 0);
+  EXPECT_EQ(ok.signal, 0);
+  EXPECT_TRUE(ended_cleanly(ok));
+  EXPECT_GT(ok.max_rss_kB, 0);
+  const Child three = run_shell("exit 3", dir);
+  EXPECT_EQ(three.exit_code, 3);
+  EXPECT_FALSE(ended_cleanly(three));
+  const Child killed = run_shell("kill -9 $$", dir);
+  EXPECT_EQ(killed.exit_code, -1);
+  EXPECT_EQ(killed.signal, SIGKILL);
+  EXPECT_FALSE(ended_cleanly(killed));
+  // The environment and the log of a child.
+  const Child env = run_shell("echo \"$FLEET_TEST $MAPTR_PARTICIPANT_ID\"", dir);
+  std::ifstream log(dir + "/logs/sh.stderr");
+  std::string all((std::istreambuf_iterator<char>(log)), {});
+  EXPECT_NE(all.find("42 7"), std::string::npos) << all;
+  const auto procs = processes_json({ok, three, killed});
+  ASSERT_EQ(procs.size(), 3u);
+  EXPECT_EQ(procs[1]["exit_code"], 3);
+  EXPECT_EQ(procs[2]["signal"], SIGKILL);
+  EXPECT_EQ(procs[0]["starts"], 1);
+  EXPECT_EQ(procs[0]["external"], false);
+}
+
+TEST(FleetSummary, ParticipantIdsCycleThroughWindows) {
+  ParticipantIds ids(10, 3);
+  EXPECT_EQ(ids.take(2, 0), 2);
+  EXPECT_EQ(ids.take(2, 1), 12);
+  EXPECT_EQ(ids.take(2, 2), 22);
+  EXPECT_EQ(ids.take(2, 3), 2);
+  EXPECT_EQ(ids.highest(), 22);
+}
+
+TEST(FleetSummary, SummaryOfARunFromItsFiles) {
+  const std::string dir = ::testing::TempDir() + "/fleet_summary";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/plant.json") << R"({"status":"ok","sim_time_s":20.0,"ticks":2000,"distance_m":10.0,
+      "energy_J":500.0,"mean_active_agents":5.5,"membership_events":[]})";
+  std::ofstream(dir + "/level2-L.csv")
+      << "t_s,n_live,n_other,status,relaxed,ipopt_n_active,oracle_n_active,n_target,solve_ms\n"
+      << "1,8,8,1,3.2,4,4,4,2.0\n1,8,8,1,3.2,4,3,4,4.0\n1,8,8,2,9,8,-1,8,6.0\n";
+  maptr::config::Scenario sc;
+  sc.source = "/project/deploy/scenarios/default.yaml";
+  RunRecord r;
+  r.run_wall_s = 4.0;
+  r.discovery_s = 1.5;
+  r.transport = "shm";
+  const nlohmann::json s = build_summary(sc, "/project", r, dir, {plant_child(0, 0)});
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_EQ(s["scenario_file"], "deploy/scenarios/default.yaml");
+  EXPECT_DOUBLE_EQ(s["real_time_factor"].get<double>(), 5.0);
+  EXPECT_DOUBLE_EQ(s["mileage_m_per_J"].get<double>(), 0.02);
+  EXPECT_EQ(s["trace_sha256"], "");
+  EXPECT_FALSE(s.contains("chaos_seed"));
+  const auto& l2 = s["level2"]["L"];
+  EXPECT_EQ(l2["decisions"], 3);
+  EXPECT_EQ(l2["infeasible"], 1);
+  EXPECT_EQ(l2["oracle_checked"], 2);
+  EXPECT_EQ(l2["oracle_differs"], 1);
+  EXPECT_DOUBLE_EQ(l2["solve_ms_median"].get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(l2["solve_ms_max"].get<double>(), 6.0);
+  EXPECT_FALSE(s["level2"].contains("R"));
+  const std::string human = maptr::deploy::human_summary(s);
+  EXPECT_NE(human.find("status      ok"), std::string::npos) << human;
+  EXPECT_NE(human.find("oracle differed 1 of 2"), std::string::npos) << human;
+}
