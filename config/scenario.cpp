@@ -1,5 +1,6 @@
 #include "config/scenario.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -518,24 +519,49 @@ bool read_list(const std::string& path, const YAML::Node& v, Scenario& s, const 
   return true;
 }
 
+/// Ignores every parse event: only whether a document follows matters.
+class SkipEvents : public YAML::EventHandler {
+ public:
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+  }
+  void OnMapEnd() override {}
+};
+
+/// True if the text holds a second document. (Reads at most two: yaml-cpp's LoadAll can loop
+/// forever on some malformed input.)
+bool has_second_document(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  SkipEvents skip;
+  return parser.HandleNextDocument(skip) && parser.HandleNextDocument(skip);
+}
+
 /// The one document of the text, or a ScenarioError.
 YAML::Node load_document(const std::string& text, const Context& c) {
   if (text.size() > kMaxScenarioBytes)
     c.fail("(file)", std::to_string(text.size()) + " bytes",
            "a scenario is at most " + std::to_string(kMaxScenarioBytes) + " bytes");
-  std::vector<YAML::Node> docs;
+  YAML::Node doc;
   try {
-    docs = YAML::LoadAll(text);
+    doc = YAML::Load(text);
+    if (doc && !doc.IsNull() && has_second_document(text))
+      c.fail("(top level)", "a second document", "must be one document");
   } catch (const YAML::Exception& e) {
     c.fail("(document)",
            "line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1),
            "not valid YAML: " + quoted(e.msg));
   }
-  if (docs.empty() || (docs.size() == 1 && docs[0].IsNull()))
+  if (!doc || doc.IsNull())
     c.fail("(top level)", "(empty)", "the file holds no scenario (empty or only comments)");
-  if (docs.size() > 1)
-    c.fail("(top level)", std::to_string(docs.size()) + " documents", "must be one document");
-  return docs[0];
+  return doc;
 }
 
 // ---- Validation of the rules that tie fields together ----
