@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <limits>
 #include <set>
 #include <sstream>
 #include <variant>
@@ -97,12 +96,6 @@ std::string join(const std::string& prefix, const std::string& key) {
 
 // ---- Range and checks ----
 
-std::string number(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 std::string unit_suffix(const FieldInfo& f) { return f.unit.empty() || f.unit == "1" ? "" : " " + f.unit; }
 
 /// "" if v is allowed in f, else why not.
@@ -173,8 +166,6 @@ void check_record(const Table<R>& t, const R& rec, const std::string& base, cons
 }
 
 // ---- The tables ----
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Range closed(double lo, double hi) { return Range{lo, hi, false, false, false, 1}; }
 Range above(double lo, double hi) { return Range{lo, hi, true, false, false, 1}; }  ///< (lo, hi]
@@ -625,7 +616,8 @@ bool Range::contains(double v) const {
 }
 
 std::string Range::describe() const {
-  return (min_open ? "(" : "[") + number(min) + ", " + number(max) + (max_open ? ")" : "]");
+  return (min_open ? "(" : "[") + model::param_value(min) + ", " + model::param_value(max) +
+         (max_open ? ")" : "]");
 }
 
 long long Scenario::ticks() const { return std::llround(duration_s * tick_hz); }
