@@ -723,9 +723,15 @@ std::vector<FieldInfo> field_table() {
 
 void set_field(Scenario& s, const std::string& path, const std::string& value, const std::string& origin) {
   const Context c{origin};
-  const Field<Scenario>* f = find(scenario_table(), path);
+  // The robot's top-level keys also by their place in the struct.
+  static const std::pair<const char*, const char*> kStructPaths[] = {
+      {"robot.agents", "agents"}, {"robot.gross_mass_kg", "gross_mass_kg"}, {"robot.motor", "motor"}};
+  std::string key = path;
+  for (const auto& [in_struct, in_file] : kStructPaths)
+    if (path == in_struct) key = in_file;
+  const Field<Scenario>* f = find(scenario_table(), key);
   if (!f) c.fail(path, value, "not a scenario field");
-  read_value(*f, YAML::Node(value), s, path, c);
+  read_value(*f, YAML::Node(value), s, key, c);
 }
 
 void set_speed(Scenario& s, const std::string& value, const std::string& origin) {

@@ -129,7 +129,9 @@ std::vector<FieldInfo> field_table();
 //   --tick-hz HZ      -> tick_hz
 //   --trace-every N   -> trace_every
 //   --speed MPS       -> set_speed(): speed_mps of every segment that is not a stop
-// Call Scenario::validate() once all values are set (the rules that tie fields together).
+// set_field() also takes the struct's paths robot.agents, robot.gross_mass_kg and robot.motor
+// for those three. Call Scenario::validate() once all values are set (the rules that tie
+// fields together).
 
 /// Parses and range-checks one value exactly as the file would and stores it. `path` is a
 /// scenario field of field_table() (not a list's); `origin` names where the value came from

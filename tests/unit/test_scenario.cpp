@@ -386,6 +386,10 @@ TEST(Scenario, SetFieldAcceptsValuesAsTheFileWould) {
   EXPECT_EQ(s.tick_hz, 250.0);
   EXPECT_EQ(s.trajectory.segments[0].speed_mps, 3.5);
   EXPECT_NO_THROW(s.validate());
+  set_field(s, "robot.agents", "8", "--agents");  // the struct's path names the same field
+  set_field(s, "robot.gross_mass_kg", "9", "--gross-kg");
+  EXPECT_EQ(s.robot.agents, 8);
+  EXPECT_EQ(s.robot.gross_mass_kg, 9.0);
 }
 
 TEST(Scenario, SetFieldRefusesWhatTheFileWould) {
