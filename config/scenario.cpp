@@ -1,331 +1,746 @@
 #include "config/scenario.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
+#include <variant>
 
 #include "model/motor.hpp"
 
 namespace maptr::config {
 namespace {
 
-/// Reads one YAML map strictly: typed fields, and every key must be known.
-class MapReader {
- public:
-  MapReader(const YAML::Node& n, std::string path, std::string source)
-      : n_(n), path_(std::move(path)), source_(std::move(source)) {
-    if (n_ && !n_.IsMap()) fail(path_.empty() ? "(top level)" : path_, describe(n_), "must be a mapping");
-  }
+namespace fs = std::filesystem;
 
-  template <class T>
-  void get(const std::string& key, T& out) {
-    used_.insert(key);
-    if (!n_ || !n_[key]) return;
-    const YAML::Node v = n_[key];
-    try {
-      if (!v.IsScalar()) throw YAML::Exception(YAML::Mark(), "not a scalar");
-      out = v.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(field(key), describe(v), std::string("must be ") + type_name<T>());
-    }
-  }
+using Value = std::variant<bool, long long, double, std::string>;
 
-  YAML::Node child(const std::string& key) {
-    used_.insert(key);
-    return n_ ? n_[key] : YAML::Node();
-  }
-
-  void finish() {
-    if (!n_) return;
-    for (const auto& kv : n_) {
-      const std::string k = kv.first.as<std::string>();
-      if (!used_.count(k)) fail(field(k), describe(kv.second), "unknown key");
-    }
-  }
-
-  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  [[noreturn]] void fail(const std::string& f, const std::string& v, const std::string& why) const {
-    throw ScenarioError(source_ + ": " + f + " = " + v + ": " + why);
-  }
-
-  static std::string describe(const YAML::Node& v) {
-    if (!v) return "(missing)";
-    if (v.IsScalar()) return v.Scalar();
-    YAML::Emitter e;
-    e << YAML::Flow << v;
-    return e.c_str();
-  }
-
- private:
-  template <class T>
-  static const char* type_name() {
-    if (std::is_same<T, bool>::value) return "true or false";
-    if (std::is_integral<T>::value) return "an integer";
-    if (std::is_floating_point<T>::value) return "a number";
-    return "a string";
-  }
-
-  YAML::Node n_;
-  std::string path_, source_;
-  std::set<std::string> used_;
+/// A field of a record R: what field_table() shows, and how to read and write it in R.
+template <class R>
+struct Field {
+  FieldInfo info;                                       ///< path relative to R
+  std::string (*accept)(const std::string&) = nullptr;  ///< text: "" if acceptable beyond choices
+  std::function<Value(const R&)> get;                   ///< empty: input only
+  std::function<void(R&, const Value&)> set;
 };
 
-void need(bool ok, const std::string& source, const std::string& field, double value, const std::string& why) {
-  if (!ok) {
+template <class R>
+using Table = std::vector<Field<R>>;
+
+// ---- Value formatting ----
+
+/// A value as to_yaml() writes it: doubles with 17 significant digits (they read back exact).
+std::string yaml_scalar(const Value& v) {
+  if (const double* d = std::get_if<double>(&v)) {
+    if (std::isnan(*d)) return ".nan";
+    if (std::isinf(*d)) return *d > 0 ? ".inf" : "-.inf";
     std::ostringstream os;
-    os << source << ": " << field << " = " << value << ": " << why;
-    throw ScenarioError(os.str());
+    os.precision(17);
+    os << *d;
+    return os.str();
+  }
+  if (const long long* i = std::get_if<long long>(&v)) return std::to_string(*i);
+  if (const bool* b = std::get_if<bool>(&v)) return *b ? "true" : "false";
+  return std::get<std::string>(v);
+}
+
+/// A value as error messages print it (numbers with 6 significant digits).
+std::string message_value(const Value& v) {
+  if (const double* d = std::get_if<double>(&v)) return model::param_value(*d);
+  return yaml_scalar(v);
+}
+
+/// At most kMaxQuotedChars bytes of `text` (cut on a UTF-8 boundary, then "…"), control
+/// characters shown as '?', so that a message stays one short line.
+std::string quoted(const std::string& text) {
+  std::size_t n = std::min(text.size(), kMaxQuotedChars);
+  if (n < text.size())
+    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
+  std::string out = text.substr(0, n);
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+  return n < text.size() ? out + "…" : out;
+}
+
+std::string describe(const YAML::Node& v) {
+  if (!v) return "(missing)";
+  switch (v.Type()) {
+    case YAML::NodeType::Scalar:
+      return v.Scalar();
+    case YAML::NodeType::Sequence:
+      return v.size() == 0 ? "[]" : "(a list of " + std::to_string(v.size()) + ")";
+    case YAML::NodeType::Map:
+      return v.size() == 0 ? "{}" : "(a mapping)";
+    default:
+      return "~";
+  }
+}
+
+/// Names the source in every error.
+struct Context {
+  std::string source;
+  [[noreturn]] void fail(const std::string& field, const std::string& value, const std::string& why) const {
+    throw ScenarioError(source + ": " + quoted(field) + " = " + quoted(value) + ": " + why);
+  }
+};
+
+std::string join(const std::string& prefix, const std::string& key) {
+  return prefix.empty() ? key : prefix + "." + key;
+}
+
+// ---- Range and checks ----
+
+std::string unit_suffix(const FieldInfo& f) { return f.unit.empty() || f.unit == "1" ? "" : " " + f.unit; }
+
+/// "" if v is allowed in f, else why not.
+std::string problem(const FieldInfo& f, const Value& v, std::string (*accept)(const std::string&)) {
+  if (f.type == FieldType::kReal || f.type == FieldType::kInteger) {
+    const double x =
+        f.type == FieldType::kReal ? std::get<double>(v) : static_cast<double>(std::get<long long>(v));
+    const std::string in = f.range.describe() + unit_suffix(f);
+    if (!std::isfinite(x)) return "must be a finite number in " + in;
+    if (!f.range.contains(x)) {
+      std::string why = "must be in " + in;
+      if (f.range.nonzero) why += ", not zero";
+      if (f.range.multiple_of > 1) why += ", a multiple of " + std::to_string(f.range.multiple_of);
+      return why;
+    }
+    return "";
+  }
+  if (f.type != FieldType::kText) return "";
+  const std::string& s = std::get<std::string>(v);
+  if (std::find(f.choices.begin(), f.choices.end(), s) != f.choices.end()) return "";
+  if (accept) return accept(s);
+  std::string list;
+  for (const auto& c : f.choices) list += (list.empty() ? "" : ", ") + c;
+  return "must be one of " + list;
+}
+
+/// Converts a YAML value to the field's type, or fails naming the field.
+Value convert(const FieldInfo& f, const YAML::Node& n, const std::string& field, const Context& c) {
+  static const char* kTypeWords[] = {"a number", "an integer", "true or false", "a string"};
+  const char* want = kTypeWords[static_cast<int>(f.type)];
+  if (!n.IsScalar()) c.fail(field, describe(n), std::string("must be ") + want);
+  try {
+    switch (f.type) {
+      case FieldType::kReal:
+        return n.as<double>();
+      case FieldType::kInteger:
+        return n.as<long long>();
+      case FieldType::kBool:
+        return n.as<bool>();
+      case FieldType::kText:
+        return n.Scalar();
+    }
+  } catch (const std::exception&) {
+  }
+  c.fail(field, n.Scalar(), std::string("must be ") + want);
+}
+
+template <class R>
+void read_value(const Field<R>& f, const YAML::Node& n, R& rec, const std::string& field, const Context& c) {
+  const Value v = convert(f.info, n, field, c);
+  const std::string why = problem(f.info, v, f.accept);
+  if (!why.empty()) c.fail(field, n.Scalar(), why);
+  try {
+    f.set(rec, v);
+  } catch (const std::exception& e) {
+    c.fail(field, n.Scalar(), e.what());
+  }
+}
+
+template <class R>
+void check_record(const Table<R>& t, const R& rec, const std::string& base, const Context& c) {
+  for (const auto& f : t) {
+    if (!f.get) continue;
+    const Value v = f.get(rec);
+    const std::string why = problem(f.info, v, f.accept);
+    if (!why.empty()) c.fail(join(base, f.info.path), message_value(v), why);
+  }
+}
+
+// ---- The tables ----
+
+Range closed(double lo, double hi) { return Range{lo, hi, false, false, false, 1}; }
+Range above(double lo, double hi) { return Range{lo, hi, true, false, false, 1}; }  ///< (lo, hi]
+
+template <class R, class Acc>
+Field<R> real(const char* path, Acc acc, Range r, const char* unit, const char* desc) {
+  Field<R> f;
+  f.info = FieldInfo{path, FieldType::kReal, r, {}, "", unit, desc, "", false};
+  f.get = [acc](const R& x) -> Value { return static_cast<double>(acc(x)); };
+  f.set = [acc](R& x, const Value& v) { acc(x) = std::get<double>(v); };
+  return f;
+}
+
+template <class R, class Acc>
+Field<R> integer(const char* path, Acc acc, Range r, const char* desc) {
+  Field<R> f;
+  f.info = FieldInfo{path, FieldType::kInteger, r, {}, "", "1", desc, "", false};
+  f.get = [acc](const R& x) -> Value { return static_cast<long long>(acc(x)); };
+  f.set = [acc](R& x, const Value& v) { acc(x) = static_cast<int>(std::get<long long>(v)); };
+  return f;
+}
+
+template <class R, class Acc>
+Field<R> flag(const char* path, Acc acc, const char* desc) {
+  Field<R> f;
+  f.info = FieldInfo{path, FieldType::kBool, {}, {}, "", "", desc, "", false};
+  f.get = [acc](const R& x) -> Value { return static_cast<bool>(acc(x)); };
+  f.set = [acc](R& x, const Value& v) { acc(x) = std::get<bool>(v); };
+  return f;
+}
+
+template <class R, class Acc>
+Field<R> text(const char* path, Acc acc, std::vector<std::string> choices, const char* desc,
+              std::string (*accept)(const std::string&) = nullptr, const char* rule = "") {
+  Field<R> f;
+  f.info = FieldInfo{path, FieldType::kText, {}, std::move(choices), rule, "", desc, "", false};
+  f.accept = accept;
+  f.get = [acc](const R& x) -> Value { return std::string(acc(x)); };
+  f.set = [acc](R& x, const Value& v) { acc(x) = std::get<std::string>(v); };
+  return f;
+}
+
+std::string name_problem(const std::string& n) {
+  const bool chars_ok = std::all_of(n.begin(), n.end(), [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '.' ||
+           ch == '_' || ch == '-';
+  });
+  if (n.empty() || n.size() > kMaxNameLength || !chars_ok || n[0] == '.')
+    return "must be 1 to " + std::to_string(kMaxNameLength) +
+           " characters from A-Z a-z 0-9 . _ - not starting with '.'";
+  return "";
+}
+
+std::string target_problem(const std::string& t) {
+  int side = 0, index = 0;
+  if (parse_agent_name(t, side, index)) return "";
+  return "must be an agent (L0, R3, ...), group-L, group-R, central, plant or discovery";
+}
+
+using S = Scenario;
+
+/// Top-level fields: the run and the robot's size, mass and motor.
+Table<S> run_fields() {
+  Table<S> v = {
+      text<S>(
+          "name", [](auto& s) -> auto& { return s.name; }, {}, "scenario name; names the run folder",
+          &name_problem, "A-Z a-z 0-9 . _ - (not first: .), 1 to 64 characters"),
+      text<S>(
+          "mode", [](auto& s) -> auto& { return s.mode; }, {"all", "ec"},
+          "all: every agent drives (the paper's NO); ec: energy-conscious (Levels 2 and 3)"),
+      real<S>(
+          "duration_s", [](auto& s) -> auto& { return s.duration_s; }, above(0, 1e6), "s",
+          "simulated time of the run"),
+      real<S>(
+          "tick_hz", [](auto& s) -> auto& { return s.tick_hz; }, closed(1, 1e4), "Hz",
+          "Level-1 control and plant tick rate"),
+      flag<S>(
+          "realtime", [](auto& s) -> auto& { return s.realtime; }, "pace ticks to the wall clock"),
+      integer<S>(
+          "trace_every", [](auto& s) -> auto& { return s.trace_every; }, closed(1, 1e6),
+          "write every n-th tick to trace.csv"),
+      real<S>(
+          "stop_below_speed_pct", [](auto& s) -> auto& { return s.stop_below_speed_pct; },
+          Range{0, 100, false, true, false, 1}, "%",
+          "end once the speed stays this far below its reference for 5 s (0: never)"),
+      integer<S>(
+          "agents", [](auto& s) -> auto& { return s.robot.agents; }, Range{4, 512, false, false, false, 4},
+          "number of wheel-motor agents N (N/2 per side, N/4 rows)"),
+      real<S>(
+          "gross_mass_kg", [](auto& s) -> auto& { return s.robot.gross_mass_kg; }, above(0, 1e4), "kg",
+          "payload + chassis + motors + wheels"),
+      text<S>(
+          "motor", [](auto& s) -> auto& { return s.robot.motor.type; }, {"I", "II"},
+          "motor type of the paper's Table 1"),
+  };
+  // The motor type selects the whole motor of the paper's Table 1.
+  for (auto& f : v)
+    if (f.info.path == "motor")
+      f.set = [](S& s, const Value& x) { s.robot.motor = model::motor_type(std::get<std::string>(x)); };
+  return v;
+}
+
+/// robot.* and battery.*: the geometry, friction and battery of model::RobotParams.
+Table<S> robot_fields() {
+  return {
+      real<S>(
+          "robot.track_m", [](auto& s) -> auto& { return s.robot.track_m; }, above(0, 100), "m",
+          "a: distance between the left and right wheel columns"),
+      real<S>(
+          "robot.row_spacing_m", [](auto& s) -> auto& { return s.robot.row_spacing_m; }, above(0, 100), "m",
+          "b: distance between wheel rows"),
+      real<S>(
+          "robot.wheel_radius_m", [](auto& s) -> auto& { return s.robot.wheel_radius_m; }, above(0, 10), "m",
+          "r: wheel radius"),
+      real<S>(
+          "robot.wheel_mass_kg", [](auto& s) -> auto& { return s.robot.wheel_mass_kg; }, closed(0, 1e3), "kg",
+          "m_w: mass of one wheel"),
+      real<S>(
+          "robot.mu_rolling", [](auto& s) -> auto& { return s.robot.mu_rolling; }, closed(0, 10), "1",
+          "mu_s: rolling friction coefficient"),
+      real<S>(
+          "robot.mu_lateral", [](auto& s) -> auto& { return s.robot.mu_lateral; }, closed(0, 10), "1",
+          "mu_l: lateral friction coefficient"),
+      real<S>(
+          "robot.k_s", [](auto& s) -> auto& { return s.robot.k_s; }, above(0, 1e6), "s/m",
+          "friction smoothing constant"),
+      real<S>(
+          "robot.gravity", [](auto& s) -> auto& { return s.robot.gravity; }, above(0, 100), "m/s^2",
+          "gravitational acceleration"),
+      real<S>(
+          "robot.yaw_inertia_kgm2", [](auto& s) -> auto& { return s.robot.yaw_inertia_kgm2; }, closed(0, 1e6),
+          "kg m^2", "I_zz (0: derived from a plate carrying the gross mass)"),
+      real<S>(
+          "robot.wheel_inertia_kgm2", [](auto& s) -> auto& { return s.robot.wheel_inertia_kgm2; },
+          closed(0, 1e3), "kg m^2", "wheel inertia (0: derived, disc m_w r^2 / 2)"),
+      real<S>(
+          "battery.initial_discharge_mAh", [](auto& s) -> auto& { return s.initial_discharge_mAh; },
+          closed(0, 1e7), "mAh", "battery discharge at the start (both groups)"),
+      real<S>(
+          "battery.capacity_mAh", [](auto& s) -> auto& { return s.robot.battery.capacity_mAh; },
+          above(0, 1e7), "mAh", "battery capacity"),
+      real<S>(
+          "battery.h", [](auto& s) -> auto& { return s.robot.battery.h; }, closed(-1e3, 1e3), "V",
+          "h of V_B(d) = h e^{w d} + y e^{z d}"),
+      real<S>(
+          "battery.w", [](auto& s) -> auto& { return s.robot.battery.w; }, closed(-1, 1), "1/mAh",
+          "w of V_B(d)"),
+      real<S>(
+          "battery.y", [](auto& s) -> auto& { return s.robot.battery.y; }, above(0, 1e3), "V",
+          "y of V_B(d): the full-battery voltage term"),
+      real<S>(
+          "battery.z", [](auto& s) -> auto& { return s.robot.battery.z; }, closed(-1, 1), "1/mAh",
+          "z of V_B(d)"),
+  };
+}
+
+/// control.* and trajectory.accel_mps2.
+Table<S> control_fields() {
+  return {
+      real<S>(
+          "control.kp", [](auto& s) -> auto& { return s.control.pid.kp; }, closed(0, 1e6), "V s/rad",
+          "wheel PID proportional gain (kp and ki not both zero)"),
+      real<S>(
+          "control.ki", [](auto& s) -> auto& { return s.control.pid.ki; }, closed(0, 1e6), "V/rad",
+          "wheel PID integral gain"),
+      real<S>(
+          "control.kd", [](auto& s) -> auto& { return s.control.pid.kd; }, closed(0, 1e6), "V s^2/rad",
+          "wheel PID derivative gain"),
+      real<S>(
+          "control.level2_period_s", [](auto& s) -> auto& { return s.control.level2_period_s; },
+          above(0, 1e6), "s", "Level-2 decision period (at least one tick)"),
+      integer<S>(
+          "control.horizon", [](auto& s) -> auto& { return s.control.horizon; }, closed(1, 1000),
+          "Level-2 horizon, steps"),
+      real<S>(
+          "control.horizon_step_s", [](auto& s) -> auto& { return s.control.horizon_step_s; }, above(0, 1e3),
+          "s", "Level-2 horizon step"),
+      real<S>(
+          "control.t_on_s", [](auto& s) -> auto& { return s.control.t_on_s; }, above(0, 1e7), "s",
+          "Level-3 period T_ON"),
+      real<S>(
+          "control.thermal_limit_s", [](auto& s) -> auto& { return s.control.thermal_limit_s; },
+          above(0, 1e7), "s", "longest continuous active time of an agent"),
+      flag<S>(
+          "control.oracle", [](auto& s) -> auto& { return s.control.oracle; },
+          "also run the exhaustive Level-2 search and report it"),
+      real<S>(
+          "control.group_hold_s", [](auto& s) -> auto& { return s.control.group_hold_s; }, closed(0, 1e6),
+          "s", "agents hold the last assignment this long without their group"),
+      real<S>(
+          "control.central_timeout_s", [](auto& s) -> auto& { return s.control.central_timeout_s; },
+          closed(0, 1e6), "s", "agents ramp to a stop after this long without central"),
+      real<S>(
+          "control.stop_decel_mps2", [](auto& s) -> auto& { return s.control.stop_decel_mps2; },
+          above(0, 1e3), "m/s^2", "deceleration of that ramp"),
+      real<S>(
+          "trajectory.accel_mps2", [](auto& s) -> auto& { return s.trajectory.accel_mps2; }, closed(0, 1e3),
+          "m/s^2", "ramp limit on the speed reference (0: steps)"),
+  };
+}
+
+/// The scenario's own fields, in the order to_yaml() writes them.
+const Table<Scenario>& scenario_table() {
+  static const Table<S> t = [] {
+    Table<S> v = run_fields();
+    for (auto part : {robot_fields(), control_fields()}) v.insert(v.end(), part.begin(), part.end());
+    return v;
+  }();
+  return t;
+}
+
+/// A segment as a file gives it: the segment, and an arc's radius if given instead of its yaw rate.
+struct SegmentInput {
+  Segment seg{"straight", 0.0, 0.0, 60.0};  ///< a file's segment does not move unless told
+  double radius_m = 0.0;
+  bool has_radius = false;
+  bool has_yaw_rate = false;
+};
+
+const Table<SegmentInput>& segment_table() {
+  using G = SegmentInput;
+  static const Table<G> t = [] {
+    Table<G> v = {
+        text<G>(
+            "type", [](auto& g) -> auto& { return g.seg.type; }, {"straight", "arc", "stop"},
+            "straight, arc (needs a yaw rate or a radius) or stop"),
+        real<G>(
+            "speed_mps", [](auto& g) -> auto& { return g.seg.speed_mps; }, closed(0, 1e3), "m/s",
+            "body speed reference v_x (no reversing)"),
+        real<G>(
+            "yaw_rate_rad_s", [](auto& g) -> auto& { return g.seg.yaw_rate_rad_s; }, closed(-1e3, 1e3),
+            "rad/s", "yaw rate reference w (positive: left)"),
+        real<G>(
+            "radius_m", [](auto& g) -> auto& { return g.radius_m; }, Range{-1e6, 1e6, false, false, true, 1},
+            "m", "arc only, instead of yaw_rate_rad_s: w = speed_mps / radius_m (negative: right)"),
+        real<G>(
+            "duration_s", [](auto& g) -> auto& { return g.seg.duration_s; }, above(0, 1e6), "s",
+            "how long the segment lasts"),
+    };
+    v[2].set = [](G& g, const Value& x) {
+      g.seg.yaw_rate_rad_s = std::get<double>(x), g.has_yaw_rate = true;
+    };
+    v[3].set = [](G& g, const Value& x) { g.radius_m = std::get<double>(x), g.has_radius = true; };
+    v[3].get = nullptr;
+    v[3].info.input_only = true;
+    return v;
+  }();
+  return t;
+}
+
+const Table<FaultSpec>& fault_table() {
+  using F = FaultSpec;
+  static const Table<F> t = {
+      text<F>(
+          "target", [](auto& f) -> auto& { return f.target; },
+          {"group-L", "group-R", "central", "plant", "discovery"}, "process to act on", &target_problem,
+          "an agent of the robot (L0, R3, ...)"),
+      text<F>(
+          "action", [](auto& f) -> auto& { return f.action; }, {"kill", "restart"}, "what to do to it"),
+      real<F>(
+          "at_s", [](auto& f) -> auto& { return f.at_s; }, closed(0, 1e6), "s",
+          "simulated time of the action (within the run)"),
+  };
+  return t;
+}
+
+template <class R>
+const Field<R>* find(const Table<R>& t, const std::string& path) {
+  for (const auto& f : t)
+    if (f.info.path == path) return &f;
+  return nullptr;
+}
+
+template <class R>
+bool is_section(const Table<R>& t, const std::string& path) {
+  for (const auto& f : t)
+    if (f.info.path.compare(0, path.size() + 1, path + ".") == 0) return true;
+  return false;
+}
+
+// ---- Reading ----
+
+/// Handles the keys of a record that are lists (returns false for a key it does not know).
+template <class R>
+using ListReader = std::function<bool(const std::string& path, const YAML::Node& value, R& rec)>;
+
+/// Reads a mapping into rec: every key known, none twice, each value typed and in range.
+/// `section` is the table prefix ("" or "robot"), `base` what messages put before it.
+template <class R>
+void read_map(const YAML::Node& n, const Table<R>& t, R& rec, const std::string& base,
+              const std::string& section, const Context& c, const ListReader<R>& lists) {
+  const std::string here = join(base, section);
+  if (!n.IsMap()) c.fail(here.empty() ? "(top level)" : here, describe(n), "must be a mapping");
+  std::set<std::string> seen;
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    if (!it->first.IsScalar())
+      c.fail(join(here, describe(it->first)), describe(it->second), "a key must be a name");
+    const std::string key = it->first.Scalar();
+    const std::string path = join(section, key), field = join(base, path);
+    if (!seen.insert(key).second) c.fail(field, describe(it->second), "duplicate key (given more than once)");
+    if (const Field<R>* f = find(t, path))
+      read_value(*f, it->second, rec, field, c);
+    else if (lists && lists(path, it->second, rec))
+      continue;
+    else if (is_section(t, path))
+      read_map(it->second, t, rec, base, path, c, lists);
+    else
+      c.fail(field, describe(it->second), "unknown key");
+  }
+}
+
+Segment read_segment(const YAML::Node& n, const std::string& base, const Context& c) {
+  SegmentInput g;
+  read_map<SegmentInput>(n, segment_table(), g, base, "", c, nullptr);
+  if (g.has_radius) {
+    if (g.seg.type != "arc")
+      c.fail(base + ".radius_m", model::param_value(g.radius_m), "only an arc has a radius");
+    if (g.has_yaw_rate)
+      c.fail(base + ".radius_m", model::param_value(g.radius_m), "give yaw_rate_rad_s or radius_m, not both");
+    g.seg.yaw_rate_rad_s = g.seg.speed_mps / g.radius_m;
+  }
+  if (g.seg.type == "stop") g.seg.speed_mps = g.seg.yaw_rate_rad_s = 0.0;
+  return g.seg;
+}
+
+/// The scenario's lists: trajectory.segments and faults.
+bool read_list(const std::string& path, const YAML::Node& v, Scenario& s, const Context& c) {
+  if (path != "trajectory.segments" && path != "faults") return false;
+  if (!v.IsSequence()) c.fail(path, describe(v), "must be a list");
+  if (path == "faults") {
+    s.faults.clear();
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      FaultSpec f;
+      read_map<FaultSpec>(v[i], fault_table(), f, "faults[" + std::to_string(i) + "]", "", c, nullptr);
+      s.faults.push_back(f);
+    }
+    return true;
+  }
+  s.trajectory.segments.clear();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    s.trajectory.segments.push_back(read_segment(v[i], "trajectory.segments[" + std::to_string(i) + "]", c));
+  return true;
+}
+
+/// Ignores every parse event: only whether a document follows matters.
+class SkipEvents : public YAML::EventHandler {
+ public:
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+  }
+  void OnMapEnd() override {}
+};
+
+/// True if the text holds a second document. (Reads at most two: yaml-cpp's LoadAll can loop
+/// forever on some malformed input.)
+bool has_second_document(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  SkipEvents skip;
+  return parser.HandleNextDocument(skip) && parser.HandleNextDocument(skip);
+}
+
+/// The one document of the text, or a ScenarioError.
+YAML::Node load_document(const std::string& text, const Context& c) {
+  if (text.size() > kMaxScenarioBytes)
+    c.fail("(file)", std::to_string(text.size()) + " bytes",
+           "a scenario is at most " + std::to_string(kMaxScenarioBytes) + " bytes");
+  YAML::Node doc;
+  try {
+    doc = YAML::Load(text);
+    if (doc && !doc.IsNull() && has_second_document(text))
+      c.fail("(top level)", "a second document", "must be one document");
+  } catch (const YAML::Exception& e) {
+    c.fail("(document)",
+           "line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1),
+           "not valid YAML: " + quoted(e.msg));
+  }
+  if (!doc || doc.IsNull())
+    c.fail("(top level)", "(empty)", "the file holds no scenario (empty or only comments)");
+  return doc;
+}
+
+// ---- Validation of the rules that tie fields together ----
+
+void check_segments(const Scenario& s, const Context& c) {
+  if (s.trajectory.segments.empty()) c.fail("trajectory.segments", "[]", "trajectory is empty");
+  // Wheel speed the motors can reach: no-load speed at the full battery voltage.
+  const auto& r = s.robot;
+  const double v_max =
+      model::no_load_speed(r.motor, std::min(r.battery.y, r.motor.rated_voltage_V)) * r.wheel_radius_m;
+  for (std::size_t i = 0; i < s.trajectory.segments.size(); ++i) {
+    const Segment& g = s.trajectory.segments[i];
+    const std::string base = "trajectory.segments[" + std::to_string(i) + "]";
+    SegmentInput in;
+    in.seg = g;
+    check_record(segment_table(), in, base, c);
+    if (g.type == "arc" && g.yaw_rate_rad_s == 0.0)
+      c.fail(base + ".yaw_rate_rad_s", "0", "an arc needs a non-zero yaw_rate_rad_s or radius_m");
+    const double wheel = std::fabs(g.speed_mps) + 0.5 * r.track_m * std::fabs(g.yaw_rate_rad_s);
+    if (!(wheel < v_max)) {
+      std::ostringstream why;
+      why << "needs a wheel speed of " << wheel << " m/s (speed and yaw rate); the motors reach at most "
+          << v_max << " m/s (no-load speed at the battery voltage)";
+      c.fail(base + ".speed_mps", model::param_value(g.speed_mps), why.str());
+    }
+  }
+}
+
+void check_faults(const Scenario& s, const Context& c) {
+  for (std::size_t i = 0; i < s.faults.size(); ++i) {
+    const FaultSpec& f = s.faults[i];
+    const std::string base = "faults[" + std::to_string(i) + "]";
+    check_record(fault_table(), f, base, c);
+    int side = 0, idx = 0;
+    if (parse_agent_name(f.target, side, idx) && idx >= s.robot.per_side())
+      c.fail(base + ".target", f.target,
+             "no such agent (" + std::to_string(s.robot.per_side()) + " per side)");
+    if (f.at_s > s.duration_s)
+      c.fail(base + ".at_s", model::param_value(f.at_s), "must be within [0, duration_s]");
+  }
+}
+
+template <class R>
+void add_infos(std::vector<FieldInfo>& out, const Table<R>& t, const R& defaults, const std::string& prefix) {
+  for (const auto& f : t) {
+    FieldInfo i = f.info;
+    i.path = prefix + i.path;
+    if (f.get) i.default_value = yaml_scalar(f.get(defaults));
+    out.push_back(i);
   }
 }
 
 }  // namespace
 
+bool Range::contains(double v) const {
+  if (!std::isfinite(v)) return false;
+  if (min_open ? !(v > min) : !(v >= min)) return false;
+  if (max_open ? !(v < max) : !(v <= max)) return false;
+  if (nonzero && v == 0.0) return false;
+  return multiple_of <= 1 || std::fmod(v, static_cast<double>(multiple_of)) == 0.0;
+}
+
+std::string Range::describe() const {
+  return (min_open ? "(" : "[") + model::param_value(min) + ", " + model::param_value(max) +
+         (max_open ? ")" : "]");
+}
+
 long long Scenario::ticks() const { return std::llround(duration_s * tick_hz); }
 
 void Scenario::validate() const {
-  const std::string& src = source.empty() ? std::string("scenario") : source;
+  const Context c{source.empty() ? std::string("scenario") : source};
+  check_record(scenario_table(), *this, "", c);
   try {
     robot.validate();
     control.pid.validate();
   } catch (const model::ParamError& e) {
-    throw ScenarioError(src + ": " + e.what());
+    throw ScenarioError(c.source + ": " + e.what());
   }
-  if (mode != "all" && mode != "ec") throw ScenarioError(src + ": mode = " + mode + ": must be all or ec");
-  need(std::isfinite(duration_s) && duration_s > 0, src, "duration_s", duration_s, "must be positive");
-  need(std::isfinite(tick_hz) && tick_hz >= 1 && tick_hz <= 10000, src, "tick_hz", tick_hz, "must be in [1, 10000]");
-  need(trace_every >= 1, src, "trace_every", trace_every, "must be at least 1");
-  need(std::isfinite(initial_discharge_mAh) && initial_discharge_mAh >= 0, src, "battery.initial_discharge_mAh",
-       initial_discharge_mAh, "must be non-negative");
-  need(std::isfinite(stop_below_speed_pct) && stop_below_speed_pct >= 0 && stop_below_speed_pct < 100, src,
-       "stop_below_speed_pct", stop_below_speed_pct, "must be in [0, 100)");
-  need(control.level2_period_s >= dt(), src, "control.level2_period_s", control.level2_period_s,
-       "must be at least one tick");
-  need(control.horizon >= 1 && control.horizon <= 1000, src, "control.horizon", control.horizon, "must be in [1, 1000]");
-  need(control.horizon_step_s > 0, src, "control.horizon_step_s", control.horizon_step_s, "must be positive");
-  need(control.t_on_s > 0, src, "control.t_on_s", control.t_on_s, "must be positive");
-  need(control.thermal_limit_s > 0, src, "control.thermal_limit_s", control.thermal_limit_s, "must be positive");
-  need(control.group_hold_s >= 0, src, "control.group_hold_s", control.group_hold_s, "must be non-negative");
-  need(control.central_timeout_s >= 0, src, "control.central_timeout_s", control.central_timeout_s, "must be non-negative");
-  need(control.stop_decel_mps2 > 0, src, "control.stop_decel_mps2", control.stop_decel_mps2, "must be positive");
-  if (trajectory.segments.empty()) throw ScenarioError(src + ": trajectory.segments = []: trajectory is empty");
-  need(trajectory.accel_mps2 >= 0, src, "trajectory.accel_mps2", trajectory.accel_mps2, "must be non-negative");
-  // Wheel speed the motors can reach: no-load speed at the full battery voltage.
-  const double v_max = model::no_load_speed(robot.motor, std::min(robot.battery.y, robot.motor.rated_voltage_V)) *
-                       robot.wheel_radius_m;
-  for (std::size_t i = 0; i < trajectory.segments.size(); ++i) {
-    const Segment& s = trajectory.segments[i];
-    const std::string f = "trajectory.segments[" + std::to_string(i) + "]";
-    if (s.type != "straight" && s.type != "arc" && s.type != "stop")
-      throw ScenarioError(src + ": " + f + ".type = " + s.type + ": must be straight, arc or stop");
-    need(std::isfinite(s.duration_s) && s.duration_s > 0, src, f + ".duration_s", s.duration_s, "must be positive");
-    need(std::isfinite(s.speed_mps), src, f + ".speed_mps", s.speed_mps, "must be finite");
-    const double wheel = std::fabs(s.speed_mps) + 0.5 * robot.track_m * std::fabs(s.yaw_rate_rad_s);
-    std::ostringstream why;
-    why << "needs a wheel speed of " << wheel << " m/s; the motors reach at most " << v_max
-        << " m/s (no-load speed at the battery voltage)";
-    need(wheel < v_max, src, f + ".speed_mps", s.speed_mps, why.str());
-    need(s.speed_mps >= 0, src, f + ".speed_mps", s.speed_mps, "must be non-negative (no reversing modelled)");
-  }
-  for (std::size_t i = 0; i < faults.size(); ++i) {
-    const FaultSpec& f = faults[i];
-    const std::string fld = "faults[" + std::to_string(i) + "]";
-    int side = 0, idx = 0;
-    const bool agent = parse_agent_name(f.target, side, idx);
-    if (agent && idx >= robot.per_side())
-      throw ScenarioError(src + ": " + fld + ".target = " + f.target + ": no such agent (" +
-                          std::to_string(robot.per_side()) + " per side)");
-    if (!agent && f.target != "group-L" && f.target != "group-R" && f.target != "central" && f.target != "plant" &&
-        f.target != "discovery")
-      throw ScenarioError(src + ": " + fld + ".target = " + f.target +
-                          ": must be an agent (L0, R3, ...), group-L, group-R, central, plant or discovery");
-    if (f.action != "kill" && f.action != "restart")
-      throw ScenarioError(src + ": " + fld + ".action = " + f.action + ": must be kill or restart");
-    need(f.at_s >= 0 && f.at_s <= duration_s, src, fld + ".at_s", f.at_s, "must be within [0, duration_s]");
-  }
+  if (control.level2_period_s < dt())
+    c.fail("control.level2_period_s", model::param_value(control.level2_period_s),
+           "must be at least one tick");
+  check_segments(*this, c);
+  check_faults(*this, c);
 }
 
 Scenario parse_scenario(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw ScenarioError(source + ": not valid YAML: " + e.what());
-  }
+  const Context c{source};
   Scenario s;
   s.source = source;
-  if (!root || root.IsNull()) {
-    s.validate();
-    return s;
-  }
-  MapReader top(root, "", source);
-  top.get("name", s.name);
-  top.get("mode", s.mode);
-  top.get("duration_s", s.duration_s);
-  top.get("tick_hz", s.tick_hz);
-  top.get("realtime", s.realtime);
-  top.get("trace_every", s.trace_every);
-  top.get("stop_below_speed_pct", s.stop_below_speed_pct);
-  top.get("agents", s.robot.agents);
-  top.get("gross_mass_kg", s.robot.gross_mass_kg);
-  std::string motor = s.robot.motor.type;
-  top.get("motor", motor);
   try {
-    s.robot.motor = model::motor_type(motor);
-  } catch (const model::ParamError& e) {
-    throw ScenarioError(source + ": " + e.what());
+    const YAML::Node root = load_document(text, c);
+    const ListReader<Scenario> lists = [&c](const std::string& p, const YAML::Node& v, Scenario& sc) {
+      return read_list(p, v, sc, c);
+    };
+    read_map<Scenario>(root, scenario_table(), s, "", "", c, lists);
+    const YAML::Node& croot = root;
+    if (croot["trajectory"] && !croot["trajectory"]["segments"])
+      c.fail("trajectory.segments", "(missing)", "a trajectory needs its list of segments");
+  } catch (const ScenarioError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw ScenarioError(source + ": " + quoted(e.what()));
   }
-  {
-    MapReader r(top.child("robot"), "robot", source);
-    r.get("track_m", s.robot.track_m);
-    r.get("row_spacing_m", s.robot.row_spacing_m);
-    r.get("wheel_radius_m", s.robot.wheel_radius_m);
-    r.get("wheel_mass_kg", s.robot.wheel_mass_kg);
-    r.get("mu_rolling", s.robot.mu_rolling);
-    r.get("mu_lateral", s.robot.mu_lateral);
-    r.get("k_s", s.robot.k_s);
-    r.get("gravity", s.robot.gravity);
-    r.get("yaw_inertia_kgm2", s.robot.yaw_inertia_kgm2);
-    r.get("wheel_inertia_kgm2", s.robot.wheel_inertia_kgm2);
-    r.finish();
-  }
-  {
-    MapReader b(top.child("battery"), "battery", source);
-    b.get("capacity_mAh", s.robot.battery.capacity_mAh);
-    b.get("initial_discharge_mAh", s.initial_discharge_mAh);
-    b.get("h", s.robot.battery.h);
-    b.get("w", s.robot.battery.w);
-    b.get("y", s.robot.battery.y);
-    b.get("z", s.robot.battery.z);
-    b.finish();
-  }
-  {
-    MapReader c(top.child("control"), "control", source);
-    c.get("kp", s.control.pid.kp);
-    c.get("ki", s.control.pid.ki);
-    c.get("kd", s.control.pid.kd);
-    c.get("level2_period_s", s.control.level2_period_s);
-    c.get("horizon", s.control.horizon);
-    c.get("horizon_step_s", s.control.horizon_step_s);
-    c.get("t_on_s", s.control.t_on_s);
-    c.get("thermal_limit_s", s.control.thermal_limit_s);
-    c.get("oracle", s.control.oracle);
-    c.get("group_hold_s", s.control.group_hold_s);
-    c.get("central_timeout_s", s.control.central_timeout_s);
-    c.get("stop_decel_mps2", s.control.stop_decel_mps2);
-    c.finish();
-  }
-  if (YAML::Node t = top.child("trajectory")) {
-    MapReader tr(t, "trajectory", source);
-    tr.get("accel_mps2", s.trajectory.accel_mps2);
-    YAML::Node segs = tr.child("segments");
-    tr.finish();
-    if (!segs || !segs.IsSequence())
-      tr.fail("trajectory.segments", MapReader::describe(segs), "must be a list of segments");
-    s.trajectory.segments.clear();
-    for (std::size_t i = 0; i < segs.size(); ++i) {
-      const std::string path = "trajectory.segments[" + std::to_string(i) + "]";
-      MapReader sr(segs[i], path, source);
-      Segment seg;
-      seg.speed_mps = 0.0;
-      sr.get("type", seg.type);
-      sr.get("speed_mps", seg.speed_mps);
-      sr.get("yaw_rate_rad_s", seg.yaw_rate_rad_s);
-      double radius = 0.0;
-      sr.get("radius_m", radius);
-      sr.get("duration_s", seg.duration_s);
-      sr.finish();
-      if (radius != 0.0) {
-        if (seg.type != "arc") sr.fail(path + ".radius_m", std::to_string(radius), "only an arc has a radius");
-        seg.yaw_rate_rad_s = seg.speed_mps / radius;
-      }
-      if (seg.type == "stop") seg.speed_mps = seg.yaw_rate_rad_s = 0.0;
-      s.trajectory.segments.push_back(seg);
-    }
-  }
-  if (YAML::Node f = top.child("faults")) {
-    if (!f.IsSequence()) top.fail("faults", MapReader::describe(f), "must be a list");
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      MapReader fr(f[i], "faults[" + std::to_string(i) + "]", source);
-      FaultSpec fs;
-      fr.get("target", fs.target);
-      fr.get("action", fs.action);
-      fr.get("at_s", fs.at_s);
-      fr.finish();
-      s.faults.push_back(fs);
-    }
-  }
-  top.finish();
   s.validate();
   return s;
 }
 
 Scenario load_scenario(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ScenarioError(path + ": cannot open the scenario file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scenario(ss.str(), path);
+  const Context c{path};
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) c.fail("(file)", path, "cannot open the scenario file (no such file)");
+  if (!fs::is_regular_file(st))
+    c.fail("(file)", path, "is not a regular file (a directory, a device or a pipe?)");
+  const auto size = fs::file_size(path, ec);
+  if (!ec && size > kMaxScenarioBytes)
+    c.fail("(file)", std::to_string(size) + " bytes",
+           "a scenario is at most " + std::to_string(kMaxScenarioBytes) + " bytes");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) c.fail("(file)", path, "cannot open the scenario file");
+  std::string text(kMaxScenarioBytes + 1, '\0');
+  in.read(&text[0], static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return parse_scenario(text, path);
 }
 
 std::string to_yaml(const Scenario& s) {
-  YAML::Emitter e;
-  e.SetDoublePrecision(17);
-  e << YAML::BeginMap;
-  e << YAML::Key << "name" << YAML::Value << s.name;
-  e << YAML::Key << "mode" << YAML::Value << s.mode;
-  e << YAML::Key << "duration_s" << YAML::Value << s.duration_s;
-  e << YAML::Key << "tick_hz" << YAML::Value << s.tick_hz;
-  e << YAML::Key << "realtime" << YAML::Value << s.realtime;
-  e << YAML::Key << "trace_every" << YAML::Value << s.trace_every;
-  e << YAML::Key << "stop_below_speed_pct" << YAML::Value << s.stop_below_speed_pct;
-  e << YAML::Key << "agents" << YAML::Value << s.robot.agents;
-  e << YAML::Key << "gross_mass_kg" << YAML::Value << s.robot.gross_mass_kg;
-  e << YAML::Key << "motor" << YAML::Value << s.robot.motor.type;
-  const auto& r = s.robot;
-  e << YAML::Key << "robot" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "track_m" << YAML::Value << r.track_m << YAML::Key << "row_spacing_m" << YAML::Value
-    << r.row_spacing_m << YAML::Key << "wheel_radius_m" << YAML::Value << r.wheel_radius_m << YAML::Key
-    << "wheel_mass_kg" << YAML::Value << r.wheel_mass_kg << YAML::Key << "mu_rolling" << YAML::Value
-    << r.mu_rolling << YAML::Key << "mu_lateral" << YAML::Value << r.mu_lateral << YAML::Key << "k_s"
-    << YAML::Value << r.k_s << YAML::Key << "gravity" << YAML::Value << r.gravity << YAML::Key
-    << "yaw_inertia_kgm2" << YAML::Value << r.yaw_inertia_kgm2 << YAML::Key << "wheel_inertia_kgm2"
-    << YAML::Value << r.wheel_inertia_kgm2;
-  e << YAML::EndMap;
-  e << YAML::Key << "battery" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "initial_discharge_mAh" << YAML::Value << s.initial_discharge_mAh;
-  e << YAML::Key << "capacity_mAh" << YAML::Value << r.battery.capacity_mAh << YAML::Key << "h" << YAML::Value
-    << r.battery.h << YAML::Key << "w" << YAML::Value << r.battery.w << YAML::Key << "y" << YAML::Value
-    << r.battery.y << YAML::Key << "z" << YAML::Value << r.battery.z;
-  e << YAML::EndMap;
-  const auto& c = s.control;
-  e << YAML::Key << "control" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "kp" << YAML::Value << c.pid.kp << YAML::Key << "ki" << YAML::Value << c.pid.ki << YAML::Key
-    << "kd" << YAML::Value << c.pid.kd << YAML::Key << "level2_period_s" << YAML::Value << c.level2_period_s
-    << YAML::Key << "horizon" << YAML::Value << c.horizon << YAML::Key << "horizon_step_s" << YAML::Value
-    << c.horizon_step_s << YAML::Key << "t_on_s" << YAML::Value << c.t_on_s << YAML::Key << "thermal_limit_s"
-    << YAML::Value << c.thermal_limit_s << YAML::Key << "oracle" << YAML::Value << c.oracle << YAML::Key
-    << "group_hold_s" << YAML::Value << c.group_hold_s << YAML::Key << "central_timeout_s" << YAML::Value
-    << c.central_timeout_s << YAML::Key << "stop_decel_mps2" << YAML::Value << c.stop_decel_mps2;
-  e << YAML::EndMap;
-  e << YAML::Key << "trajectory" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "accel_mps2" << YAML::Value << s.trajectory.accel_mps2;
-  e << YAML::Key << "segments" << YAML::Value << YAML::BeginSeq;
-  for (const auto& g : s.trajectory.segments) {
-    e << YAML::Flow << YAML::BeginMap << YAML::Key << "type" << YAML::Value << g.type << YAML::Key << "speed_mps"
-      << YAML::Value << g.speed_mps << YAML::Key << "yaw_rate_rad_s" << YAML::Value << g.yaw_rate_rad_s
-      << YAML::Key << "duration_s" << YAML::Value << g.duration_s << YAML::EndMap;
+  YAML::Node root;
+  for (const auto& f : scenario_table()) {
+    const std::string& p = f.info.path;
+    const auto dot = p.find('.');
+    if (dot == std::string::npos)
+      root[p] = yaml_scalar(f.get(s));
+    else
+      root[p.substr(0, dot)][p.substr(dot + 1)] = yaml_scalar(f.get(s));
   }
-  e << YAML::EndSeq << YAML::EndMap;
-  e << YAML::Key << "faults" << YAML::Value << YAML::BeginSeq;
-  for (const auto& f : s.faults)
-    e << YAML::Flow << YAML::BeginMap << YAML::Key << "target" << YAML::Value << f.target << YAML::Key << "action"
-      << YAML::Value << f.action << YAML::Key << "at_s" << YAML::Value << f.at_s << YAML::EndMap;
-  e << YAML::EndSeq;
-  e << YAML::EndMap;
+  YAML::Node segs(YAML::NodeType::Sequence);
+  for (const auto& g : s.trajectory.segments) {
+    YAML::Node m;
+    SegmentInput in;
+    in.seg = g;
+    for (const auto& f : segment_table())
+      if (f.get) m[f.info.path] = yaml_scalar(f.get(in));
+    m.SetStyle(YAML::EmitterStyle::Flow);
+    segs.push_back(m);
+  }
+  root["trajectory"]["segments"] = segs;
+  YAML::Node faults(YAML::NodeType::Sequence);
+  for (const auto& x : s.faults) {
+    YAML::Node m;
+    for (const auto& f : fault_table()) m[f.info.path] = yaml_scalar(f.get(x));
+    m.SetStyle(YAML::EmitterStyle::Flow);
+    faults.push_back(m);
+  }
+  root["faults"] = faults;
+  YAML::Emitter e;
+  e << root;
   return std::string(e.c_str()) + "\n";
+}
+
+std::vector<FieldInfo> field_table() {
+  std::vector<FieldInfo> out;
+  add_infos(out, scenario_table(), Scenario{}, "");
+  add_infos(out, segment_table(), SegmentInput{}, "trajectory.segments[].");
+  add_infos(out, fault_table(), FaultSpec{}, "faults[].");
+  return out;
+}
+
+void set_field(Scenario& s, const std::string& path, const std::string& value, const std::string& origin) {
+  const Context c{origin};
+  // The robot's top-level keys also by their place in the struct.
+  static const std::pair<const char*, const char*> kStructPaths[] = {
+      {"robot.agents", "agents"}, {"robot.gross_mass_kg", "gross_mass_kg"}, {"robot.motor", "motor"}};
+  std::string key = path;
+  for (const auto& [in_struct, in_file] : kStructPaths)
+    if (path == in_struct) key = in_file;
+  const Field<Scenario>* f = find(scenario_table(), key);
+  if (!f) c.fail(path, value, "not a scenario field");
+  read_value(*f, YAML::Node(value), s, key, c);
+}
+
+void set_speed(Scenario& s, const std::string& value, const std::string& origin) {
+  const Context c{origin};
+  const Field<SegmentInput>* f = find(segment_table(), "speed_mps");
+  SegmentInput in;
+  read_value(*f, YAML::Node(value), in, "trajectory.segments[].speed_mps", c);
+  for (auto& g : s.trajectory.segments)
+    if (g.type != "stop") g.speed_mps = in.seg.speed_mps;
 }
 
 std::string agent_name(int side, int index) { return (side == 0 ? "L" : "R") + std::to_string(index); }

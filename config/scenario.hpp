@@ -1,7 +1,11 @@
 #pragma once
 // Scenario: the typed configuration every process reads (the launcher resolves command-line
-// overrides and hands each child the same resolved file). Defaults live in the structs;
-// load_scenario() validates once and refuses bad input with the file, the field and the value.
+// overrides and hands each child the same resolved file). Defaults live in the structs.
+// Every field is declared once, in a table (scenario.cpp): its YAML path, type, range, unit and
+// description. Parsing, validation, to_yaml() and the error messages all come from that table;
+// field_table() lists it. A bad scenario is refused with a ScenarioError naming the file, the
+// field and the value.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,33 +23,41 @@ class ScenarioError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Largest scenario file accepted, bytes.
+constexpr std::size_t kMaxScenarioBytes = 1u << 20;
+/// Longest scenario name, characters; a name is made of A-Z a-z 0-9 . _ - and does not start
+/// with '.', so that it is one safe folder name (runs/<date>-<name>).
+constexpr std::size_t kMaxNameLength = 64;
+/// Values (and unknown keys) are quoted in error messages up to this many bytes, then "…".
+constexpr std::size_t kMaxQuotedChars = 80;
+
 struct ControlConfig {
   model::PidParams pid;
-  double level2_period_s = 1.0;      ///< Level-2 decision period, s (paper: 1 Hz)
-  int horizon = 10;                  ///< Level-2 horizon, steps (paper: 10)
-  double horizon_step_s = 0.1;       ///< Level-2 horizon step, s
-  double t_on_s = 100.0;             ///< Level-3 period T_ON, s
-  double thermal_limit_s = 600.0;    ///< max continuous active time of an agent, s
-  bool oracle = false;               ///< also run the exhaustive Level-2 search and report it
-  double group_hold_s = 1.0;         ///< agents hold the last assignment this long without their group, s
-  double central_timeout_s = 1.0;    ///< agents ramp to a stop after this long without central, s
-  double stop_decel_mps2 = 2.0;      ///< deceleration of that ramp, m/s^2
+  double level2_period_s = 1.0;    ///< Level-2 decision period, s (paper: 1 Hz)
+  int horizon = 10;                ///< Level-2 horizon, steps (paper: 10)
+  double horizon_step_s = 0.1;     ///< Level-2 horizon step, s
+  double t_on_s = 100.0;           ///< Level-3 period T_ON, s
+  double thermal_limit_s = 600.0;  ///< max continuous active time of an agent, s
+  bool oracle = false;             ///< also run the exhaustive Level-2 search and report it
+  double group_hold_s = 1.0;       ///< agents hold the last assignment this long without their group, s
+  double central_timeout_s = 1.0;  ///< agents ramp to a stop after this long without central, s
+  double stop_decel_mps2 = 2.0;    ///< deceleration of that ramp, m/s^2
 };
 
 struct FaultSpec {
-  std::string target;   ///< "L3", "R0", "group-L", "group-R", "central", "plant"
-  std::string action;   ///< "kill" | "restart"
-  double at_s = 0.0;    ///< simulated time, s
+  std::string target;  ///< "L3", "R0", "group-L", "group-R", "central", "plant", "discovery"
+  std::string action;  ///< "kill" | "restart"
+  double at_s = 0.0;   ///< simulated time, s
 };
 
 struct Scenario {
   std::string name = "default";
-  std::string source;              ///< file it came from ("" for defaults)
-  std::string mode = "ec";         ///< "all" (paper's NO) | "ec" (energy-conscious)
-  double duration_s = 60.0;        ///< simulated, s
-  double tick_hz = 100.0;          ///< Level-1 / plant tick rate, Hz
-  bool realtime = false;           ///< pace ticks to the wall clock
-  int trace_every = 1;             ///< write every n-th tick to trace.csv
+  std::string source;                  ///< file it came from ("" for defaults)
+  std::string mode = "ec";             ///< "all" (paper's NO) | "ec" (energy-conscious)
+  double duration_s = 60.0;            ///< simulated, s
+  double tick_hz = 100.0;              ///< Level-1 / plant tick rate, Hz
+  bool realtime = false;               ///< pace ticks to the wall clock
+  int trace_every = 1;                 ///< write every n-th tick to trace.csv
   double initial_discharge_mAh = 0.0;  ///< battery state at start (both groups), mAh
   /// End the run once the speed has stayed more than this many percent below its reference
   /// for 5 s after having reached it (0: never; the battery experiment runs until then).
@@ -57,15 +69,77 @@ struct Scenario {
 
   double dt() const { return 1.0 / tick_hz; }
   long long ticks() const;
-  void validate() const;   ///< throws ScenarioError naming the field and the value
+  /// Checks every field against its range in the table, then the rules that tie fields
+  /// together (wheel speed within the motors' reach, fault times within the run, ...).
+  /// Throws ScenarioError naming the field and the value.
+  void validate() const;
 };
 
-/// Reads and validates a scenario file. Unknown keys and wrong types are errors.
+/// Reads and validates a scenario file. Refused (ScenarioError): a path that is not a regular
+/// file, a file above kMaxScenarioBytes, an empty document, more than one document, a
+/// document that is not a mapping, unknown or duplicated keys, wrong types, values out of range.
 Scenario load_scenario(const std::string& path);
 /// Same from text (source names it in errors).
 Scenario parse_scenario(const std::string& yaml_text, const std::string& source);
-/// Writes the resolved scenario (every field) as YAML.
+/// Writes the resolved scenario (every field) as YAML; parse_scenario() reads it back identical.
 std::string to_yaml(const Scenario& s);
+
+// ---- The field table ----
+
+enum class FieldType { kReal, kInteger, kBool, kText };
+
+/// Allowed values of a number: between min and max, each end open or closed; never NaN or
+/// infinite; optionally not zero, and (integers) a multiple of `multiple_of`.
+struct Range {
+  double min = 0.0;
+  double max = 0.0;
+  bool min_open = false;
+  bool max_open = false;
+  bool nonzero = false;
+  long long multiple_of = 1;
+  bool contains(double v) const;
+  std::string describe() const;  ///< e.g. "(0, 1e+06]"
+};
+
+/// One field of the table, as documentation and tests see it.
+struct FieldInfo {
+  /// YAML path: "duration_s", "robot.track_m", "trajectory.segments[].speed_mps", "faults[].at_s".
+  std::string path;
+  FieldType type = FieldType::kReal;
+  Range range;                       ///< numbers
+  std::vector<std::string> choices;  ///< text: the values accepted
+  std::string rule;                  ///< text: further values accepted, in words ("" none)
+  std::string unit;                  ///< SI unit, "1" for a pure number, "" for text and bools
+  std::string description;           ///< one line
+  std::string default_value;         ///< as to_yaml() writes it ("" for an input-only field)
+  bool input_only = false;           ///< read from files, not kept (e.g. an arc's radius_m)
+};
+
+/// Every field: the scenario's own, then those of a trajectory segment and of a fault.
+std::vector<FieldInfo> field_table();
+
+// ---- Command-line values, through the same table ----
+//
+// Options of `maptr run` and the scenario paths they set:
+//   --agents N        -> agents                (robot.agents in the struct)
+//   --gross-kg KG     -> gross_mass_kg         (robot.gross_mass_kg in the struct)
+//   --motor I|II      -> motor                 (robot.motor in the struct)
+//   --mode all|ec     -> mode
+//   --duration S      -> duration_s
+//   --tick-hz HZ      -> tick_hz
+//   --trace-every N   -> trace_every
+//   --speed MPS       -> set_speed(): speed_mps of every segment that is not a stop
+// set_field() also takes the struct's paths robot.agents, robot.gross_mass_kg and robot.motor
+// for those three. Call Scenario::validate() once all values are set (the rules that tie
+// fields together).
+
+/// Parses and range-checks one value exactly as the file would and stores it. `path` is a
+/// scenario field of field_table() (not a list's); `origin` names where the value came from
+/// (e.g. "--gross-kg") in the error.
+void set_field(Scenario& s, const std::string& path, const std::string& value, const std::string& origin);
+/// Sets speed_mps of every segment that moves (type other than "stop"), checked against the
+/// segment table's range.
+void set_speed(Scenario& s, const std::string& value, const std::string& origin);
 
 /// Agent names: L0..L{N/2-1}, R0.. ; parse returns false on a malformed name.
 std::string agent_name(int side, int index);

@@ -140,14 +140,22 @@ TEST(Fleet, BadScenariosAreRefusedBeforeAnyProcessStarts) {
       {"agents: sixteen\n", "agents", "sixteen"},
       {"gross_mass_kg: -3\n", "gross_mass_kg", "-3"},
       {"agents: 18\n", "agents", "18"},
-      {"motor: X\n", "motor.type", "X"},
+      {"motor: X\n", "motor", "X"},
       {"trajectory:\n  segments:\n    - {type: straight, speed_mps: 40, duration_s: 5}\n", "speed_mps", "40"},
       {"trajectory:\n  segments: []\n", "trajectory.segments", "[]"},
+      {"", "(top level)", "(empty)"},
+      {"agents: 16\nagents: 32\n", "agents", "32"},
+      {"control:\n  stop_decel_mps2: .inf\n", "control.stop_decel_mps2", ".inf"},
+      {"name: ../outside\n", "name", "../outside"},
+      {nullptr, "(file)", "not a regular file"},  // a directory given as the scenario
   };
   int i = 0;
   for (const auto& c : cases) {
     const std::string scen = tmp.path() + "/bad" + std::to_string(i++) + ".yaml";
-    write_file(scen, c.yaml);
+    if (c.yaml)
+      write_file(scen, c.yaml);
+    else
+      std::filesystem::create_directory(scen);
     const std::string out = tmp.path() + "/run" + std::to_string(i);
     auto r = run_cli(run_args(out, {scen}), out, 30);
     EXPECT_EQ(r.exit_code, 2) << c.yaml << r.output;
