@@ -1,5 +1,7 @@
 #include "deploy/cli/level2_command.hpp"
 
+#include <cmath>
+
 #include <cstdio>
 #include <iostream>
 
@@ -37,6 +39,21 @@ void print_rows(const config::Scenario& s, control::Level2Problem p) {
   }
 }
 
+/// --battery-v: a finite voltage above 0 and at most kMaxBatteryV, else a ScenarioError naming it.
+double battery_voltage(const std::string& text) {
+  constexpr double kMaxBatteryV = 1000.0;
+  double v = 0.0;
+  std::size_t used = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(v) || v <= 0.0 || v > kMaxBatteryV)
+    throw config::ScenarioError("--battery-v = " + text.substr(0, 80) + ": must be a number in (0, 1000] V");
+  return v;
+}
+
 }  // namespace
 
 CLI::App* add_level2_command(CLI::App& app, Level2Args& a) {
@@ -45,22 +62,24 @@ CLI::App* add_level2_command(CLI::App& app, Level2Args& a) {
   l2c->add_option("--agents", a.robot.agents, "number of agents N");
   l2c->add_option("--gross-kg", a.robot.gross_kg, "gross mass, kg");
   l2c->add_option("--motor", a.robot.motor, "motor type I or II");
-  l2c->add_option("--speed", a.speed, "cruise speed, m/s (default: the first segment's)");
+  l2c->add_option("--speed", a.robot.speed, "cruise speed, m/s (default: the first segment's)");
   l2c->add_option("--battery-v", a.battery_V, "battery voltage, V (default: full, 23.4 V)");
   return l2c;
 }
 
 int cmd_level2(const Level2Args& a) {
   config::Scenario s;
+  double battery_V = 0.0;  // 0: the scenario's full battery
   try {
     s = scenario_from(a.robot);
     s.validate();
+    if (!a.battery_V.empty()) battery_V = battery_voltage(a.battery_V);
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 2;
   }
-  const double v = a.speed >= 0 ? a.speed : s.trajectory.segments.front().speed_mps;
-  control::Level2Problem p = cruise_problem(s, v, a.battery_V);
+  const double v = s.trajectory.segments.front().speed_mps;
+  control::Level2Problem p = cruise_problem(s, v, battery_V);
   std::printf(
       "Level 2, one side in steady cruise: %d agents, %.1f kg, motor %s, %.2f m/s (%.1f rad/s), V_B %.2f V\n",
       s.robot.agents, s.robot.gross_mass_kg, s.robot.motor.type.c_str(), v, p.phidot_ref_L, p.battery_V);

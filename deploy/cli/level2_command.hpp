@@ -9,9 +9,8 @@
 namespace maptr::deploy::cli {
 
 struct Level2Args {
-  RunArgs robot;         ///< the scenario and its robot overrides (agents, gross mass, motor)
-  double speed = -1;     ///< cruise speed, m/s; < 0: the first segment's
-  double battery_V = 0;  ///< battery voltage, V; 0: the scenario's full battery
+  RunArgs robot;  ///< the scenario and its overrides (agents, gross mass, motor, speed)
+  std::string battery_V;  ///< battery voltage, V; empty: the scenario's full battery
 };
 
 CLI::App* add_level2_command(CLI::App& app, Level2Args& a);

@@ -1,6 +1,8 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
 // dispatches (`maptr run|level2|experiment|bench|kill|restart`).
 #include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
 
 #include "deploy/cli/fleet_signal.hpp"
 #include "deploy/cli/level2_command.hpp"
@@ -31,11 +33,18 @@ int main(int argc, char** argv) {
     // exits 2, like a bad scenario.
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (run->parsed()) return cmd_run(run_args, bin_dir(argv[0]));
-  if (experiment->parsed()) return cmd_experiment(experiment_args, bin_dir(argv[0]));
-  if (bench->parsed()) return cmd_bench(bench_args, bin_dir(argv[0]));
-  if (level2->parsed()) return cmd_level2(level2_args);
-  if (kill->parsed()) return cmd_signal("kill", kill_args);
-  if (restart->parsed()) return cmd_signal("restart", restart_args);
+  // Every subcommand turns bad input into exit 2 with the option or field named; anything that
+  // still escapes (an unexpected error) is reported here instead of aborting the program.
+  try {
+    if (run->parsed()) return cmd_run(run_args, bin_dir(argv[0]));
+    if (experiment->parsed()) return cmd_experiment(experiment_args, bin_dir(argv[0]));
+    if (bench->parsed()) return cmd_bench(bench_args, bin_dir(argv[0]));
+    if (level2->parsed()) return cmd_level2(level2_args);
+    if (kill->parsed()) return cmd_signal("kill", kill_args);
+    if (restart->parsed()) return cmd_signal("restart", restart_args);
+  } catch (const std::exception& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 1;
+  }
   return 2;
 }

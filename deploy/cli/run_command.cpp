@@ -3,6 +3,7 @@
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -29,12 +30,16 @@ void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::s
     config::FaultSpec f;
     f.target = spec.substr(0, at);
     f.action = action;
+    const std::string time = spec.substr(at + 1);
+    std::size_t used = 0;
     try {
-      f.at_s = std::stod(spec.substr(at + 1));
+      f.at_s = std::stod(time, &used);
     } catch (...) {
-      throw ScenarioError("--" + action + " " + spec + ": time '" + spec.substr(at + 1) +
-                          "' is not a number");
+      used = 0;
     }
+    if (used == 0 || used != time.size() || !std::isfinite(f.at_s) || f.at_s < 0)
+      throw ScenarioError("--" + action + " " + spec.substr(0, 80) + ": faults[].at_s = " + time.substr(0, 80) +
+                          ": must be a finite number of seconds, at least 0");
     s.faults.push_back(f);
   }
 }
@@ -91,19 +96,24 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
 }
 
 Scenario scenario_from(const RunArgs& a) {
+  // Option -> scenario field (config/scenario.hpp lists the same mapping).
+  struct Override {
+    const char* option;
+    const char* path;
+    std::string RunArgs::*value;
+  };
+  static const Override kOverrides[] = {
+      {"--agents", "agents", &RunArgs::agents},          {"--gross-kg", "gross_mass_kg", &RunArgs::gross_kg},
+      {"--motor", "motor", &RunArgs::motor},             {"--mode", "mode", &RunArgs::mode},
+      {"--duration", "duration_s", &RunArgs::duration},  {"--tick-hz", "tick_hz", &RunArgs::tick_hz},
+      {"--trace-every", "trace_every", &RunArgs::trace_every}};
   Scenario s = config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
-  if (a.agents) s.robot.agents = a.agents;
-  if (a.gross_kg) s.robot.gross_mass_kg = a.gross_kg;
-  if (!a.motor.empty()) s.robot.motor = model::motor_type(a.motor);
-  if (!a.mode.empty()) s.mode = a.mode;
-  if (a.duration) s.duration_s = a.duration;
+  for (const auto& o : kOverrides)
+    if (!(a.*o.value).empty()) config::set_field(s, o.path, a.*o.value, o.option);
+  if (!a.speed.empty()) config::set_speed(s, a.speed, "--speed");
   if (a.realtime) s.realtime = true;
-  if (a.trace_every) s.trace_every = a.trace_every;
-  if (a.tick_hz) s.tick_hz = a.tick_hz;
-  if (a.speed >= 0)
-    for (auto& seg : s.trajectory.segments)
-      if (seg.type != "stop") seg.speed_mps = a.speed;
-  if (a.duration && s.trajectory.total_duration() < s.duration_s)
+  // A longer --duration than the trajectory: the last segment goes on.
+  if (!a.duration.empty() && s.trajectory.total_duration() < s.duration_s)
     s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
   add_faults(s, a.kills, "kill");
   add_faults(s, a.restarts, "restart");

@@ -8,15 +8,15 @@
 
 namespace maptr::deploy::cli {
 
-/// The command-line overrides of a scenario (0, -1 or empty: keep the scenario's value).
+/// The command-line overrides of a scenario, as typed (empty: keep the scenario's value). Each
+/// goes through the scenario's field table (config::set_field), so a bad value is refused
+/// exactly as it would be in the file.
 struct RunArgs {
   std::string scenario;
-  int agents = 0;
-  double gross_kg = 0, duration = 0, speed = -1;
-  std::string motor, mode, out;
+  std::string agents, gross_kg, motor, mode, duration, speed, trace_every, tick_hz;
+  std::string out;
   bool realtime = false, quiet = false;
-  int domain = -1, trace_every = 0;
-  double tick_hz = 0;
+  int domain = -1;
   std::vector<std::string> kills, restarts, external;
   long long chaos = -1;
   std::string transport = "auto";

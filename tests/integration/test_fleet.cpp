@@ -166,6 +166,30 @@ TEST(Fleet, BadScenariosAreRefusedBeforeAnyProcessStarts) {
   }
 }
 
+TEST(Fleet, BadCommandLineValuesAreRefusedLikeScenarioFields) {
+  TempDir tmp;
+  struct Case {
+    std::vector<std::string> args;
+    const char* field;
+    const char* value;
+  } cases[] = {
+      {{"--speed", "-5"}, "speed_mps", "-5"},       {{"--speed", "nan"}, "speed_mps", "nan"},
+      {{"--gross-kg", "inf"}, "gross_mass_kg", "inf"}, {{"--agents", "30"}, "agents", "30"},
+      {{"--tick-hz", "0"}, "tick_hz", "0"},          {{"--duration", "-1"}, "duration_s", "-1"},
+      {{"--kill", "L3@nan"}, "at_s", "nan"},
+  };
+  int i = 0;
+  for (const auto& c : cases) {
+    const std::string out = tmp.path() + "/run" + std::to_string(i++);
+    auto r = run_cli(run_args(out, c.args), out, 30);
+    EXPECT_EQ(r.exit_code, 2) << c.args[0] << " " << c.args[1] << ": " << r.output;
+    EXPECT_NE(r.output.find(c.args[0]), std::string::npos) << r.output;  // the option is named
+    EXPECT_NE(r.output.find(c.field), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.value), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "a refused option must not start a run";
+  }
+}
+
 TEST(Fleet, ADomainWhosePortsCannotHoldTheFleetIsRefused) {
   // RTPS ports: 7400 + 250 domain + 11 + 2 id. 256 agents are 262 participants: on domain 232
   // the last one's port would be 65933; domain 230 is the highest that fits.
