@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "deploy/bench/bench_parts.hpp"
+#include "deploy/bench/floor.hpp"
 #include "deploy/bench/memory.hpp"
 #include "deploy/experiments/isolated_launch.hpp"
 #include "deploy/report/gnuplot.hpp"
@@ -26,6 +27,8 @@ constexpr double kScaleSpeed = 10.0;  ///< m/s
 constexpr int kScaleTraceEvery = 10;  ///< trace rows
 constexpr std::size_t kStatusMdChars = 70;
 constexpr double kKiB = 1024.0;
+/// Processes besides the agents that answer every tick: 2 groups and central.
+constexpr int kAnswersBesideAgents = 3;
 
 /// The columns of scale.csv (kB, µs) and of scale.md (MB, ms).
 std::vector<report::Column> columns() {
@@ -46,7 +49,11 @@ std::vector<report::Column> columns() {
           {"tick_median_us", "", 0, false, true},
           {"tick_median_ms", "tick median ms", 2, true, false},
           {"tick_p99_us", "", 0, false, true},
-          {"tick_p99_ms", "tick p99 ms", 2, true, false}};
+          {"tick_p99_ms", "tick p99 ms", 2, true, false},
+          {"floor_median_us", "floor median µs", 0},
+          {"x_floor", "tick / floor", 1},
+          {"floor_cs_per_round", "floor cs / round", 1},
+          {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
 }
 
 /// The plots of scale.png, by column name.
@@ -108,6 +115,8 @@ json measure(const BenchOptions& o, int n) {
                wall = sum.number_or(records::summary_key::kWallTime, 0);
   const std::string status = sum.status();
   const records::TickTiming tick = sum.tick_timing("tick");
+  // The floor of the same shape, measured right after the fleet, on the same machine state.
+  const FloorResult floor = measure_floor(n + kAnswersBesideAgents);
   const long pss_max =
       mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
   return {{"agents", n},
@@ -128,7 +137,11 @@ json measure(const BenchOptions& o, int n) {
           {"tick_median_us", tick.median},
           {"tick_median_ms", tick.median / 1000.0},
           {"tick_p99_us", tick.p99},
-          {"tick_p99_ms", tick.p99 / 1000.0}};
+          {"tick_p99_ms", tick.p99 / 1000.0},
+          {"floor_median_us", floor.median_us},
+          {"x_floor", floor.median_us > 0 ? tick.median / floor.median_us : 0.0},
+          {"floor_cs_per_round", floor.ctx_switches_per_round},
+          {"floor_cpu_us_per_round", floor.cpu_us_per_round}};
 }
 
 int replot(const BenchOptions& o) {
@@ -158,7 +171,9 @@ int bench_scale(const BenchOptions& o) {
     t.rows.push_back(row);
     const std::string status = row["status_full"];
     std::cerr << " " << status << ", discovery " << row["discovery_s"].get<double>() << " s, RTF "
-              << row["real_time_factor"].get<double>() << "\n";
+              << row["real_time_factor"].get<double>() << ", tick " << row["tick_median_us"].get<double>()
+              << " µs = " << row["x_floor"].get<double>() << " x floor (" << row["floor_median_us"].get<double>()
+              << " µs)\n";
     if (status != "ok") worst = 1;
   }
   report::write_file(o.out + "/scale.md", t.md());

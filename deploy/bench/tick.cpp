@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "deploy/bench/bench_parts.hpp"
+#include "deploy/bench/floor.hpp"
 #include "deploy/experiments/isolated_launch.hpp"
 #include "deploy/report/table.hpp"
 #include "records/summary.hpp"
@@ -45,11 +46,17 @@ int bench_tick(const BenchOptions& o) {
   s.validate();
   const std::string run_dir = o.out + "/runs/tick-N" + std::to_string(n);
   const records::Summary sum(launch_isolated({s, run_dir, o.bin_dir, o.domain, ""}));
+  const FloorResult floor = measure_floor(n + 3);  // agents, 2 groups and central answer each tick
+  const double tick_us = sum.tick_timing("tick").median;
   std::ostringstream md;
   md << "Lock-step tick, N = " << n << ", " << o.duration_s << " s simulated at 100 Hz ("
      << static_cast<long long>(sum.number_or(records::summary_key::kTicks, 0)) << " ticks), status "
      << sum.status() << "\n\n"
-     << timing_md(sum);
+     << timing_md(sum) << "\nIPC floor (hub and " << floor.workers << " processes over pipes, "
+     << floor.rounds << " rounds): median " << floor.median_us << " µs, p99 " << floor.p99_us << " µs, "
+     << floor.ctx_switches_per_round << " context switches and " << floor.cpu_us_per_round
+     << " µs CPU per round. The fleet's median tick is " << (floor.median_us > 0 ? tick_us / floor.median_us : 0.0)
+     << " x floor.\n";
   std::filesystem::create_directories(o.out);
   report::write_file(o.out + "/tick.md", md.str());
   report::write_file(o.out + "/tick.json", sum.tick_timing_json().dump(2) + "\n");

@@ -1,0 +1,142 @@
+#include "deploy/bench/floor.hpp"
+
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace maptr::deploy {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kMessageBytes = 4;
+
+/// Context switches (voluntary + involuntary) of a process so far, from /proc.
+long context_switches(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  long total = 0;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("voluntary_ctxt_switches:", 0) == 0 || line.rfind("nonvoluntary_ctxt_switches:", 0) == 0)
+      total += std::stol(line.substr(line.find(':') + 1));
+  return total;
+}
+
+/// User + system CPU of a process so far, µs, from /proc (clock-tick resolution).
+double cpu_us(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto close = text.rfind(')');
+  if (close == std::string::npos) return 0.0;
+  std::vector<std::string> f;
+  std::string cur;
+  for (char c : text.substr(close + 2)) {
+    if (c == ' ') {
+      f.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  // Fields after the command: state is f[0]; utime and stime are fields 14 and 15 of the file.
+  if (f.size() < 13) return 0.0;
+  return (std::stod(f[11]) + std::stod(f[12])) * 1e6 / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+[[noreturn]] void worker(int in, int out) {
+  char buf[kMessageBytes];
+  while (read(in, buf, sizeof(buf)) == kMessageBytes)
+    if (write(out, buf, sizeof(buf)) != kMessageBytes) break;
+  _exit(0);
+}
+
+struct Workers {
+  std::vector<int> to;  ///< write ends, one per worker
+  int from = -1;        ///< read end of the shared answer pipe
+  std::vector<pid_t> pids;
+  ~Workers() {
+    for (int fd : to) close(fd);  // EOF: every worker ends
+    if (from >= 0) close(from);
+    for (pid_t p : pids) waitpid(p, nullptr, 0);
+  }
+};
+
+void start(Workers& w, int n) {
+  int answer[2];
+  if (pipe(answer) != 0) throw std::runtime_error("floor probe: pipe() failed");
+  w.from = answer[0];
+  for (int i = 0; i < n; ++i) {
+    int p[2];
+    if (pipe(p) != 0) throw std::runtime_error("floor probe: pipe() failed");
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("floor probe: fork() failed");
+    if (pid == 0) {
+      for (int fd : w.to) close(fd);
+      close(p[1]);
+      close(answer[0]);
+      worker(p[0], answer[1]);
+    }
+    close(p[0]);
+    w.to.push_back(p[1]);
+    w.pids.push_back(pid);
+  }
+  close(answer[1]);
+}
+
+/// One round: a message to every worker, then every answer. Returns its wall time, µs.
+double round_trip(const Workers& w) {
+  const char msg[kMessageBytes] = {'t', 'i', 'c', 'k'};
+  char buf[4096];
+  const auto t0 = Clock::now();
+  for (int fd : w.to)
+    if (write(fd, msg, sizeof(msg)) != kMessageBytes) throw std::runtime_error("floor probe: write failed");
+  std::size_t want = w.to.size() * kMessageBytes, got = 0;
+  while (got < want) {
+    const ssize_t n = read(w.from, buf, std::min(sizeof(buf), want - got));
+    if (n <= 0) throw std::runtime_error("floor probe: a worker went away");
+    got += static_cast<std::size_t>(n);
+  }
+  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+
+/// Context switches and CPU of the hub and every worker so far.
+std::pair<long, double> usage(const Workers& w) {
+  long cs = context_switches(getpid());
+  double cpu = cpu_us(getpid());
+  for (pid_t p : w.pids) {
+    cs += context_switches(p);
+    cpu += cpu_us(p);
+  }
+  return {cs, cpu};
+}
+
+}  // namespace
+
+FloorResult measure_floor(int workers, long rounds, long warmup) {
+  if (workers < 1 || rounds < 1) throw std::invalid_argument("floor probe: needs at least one worker and one round");
+  Workers w;
+  start(w, workers);
+  for (long r = 0; r < warmup; ++r) round_trip(w);
+  const auto before = usage(w);
+  std::vector<double> t(static_cast<std::size_t>(rounds));
+  for (auto& x : t) x = round_trip(w);
+  const auto after = usage(w);
+  std::sort(t.begin(), t.end());
+  FloorResult f;
+  f.workers = workers;
+  f.rounds = rounds;
+  f.median_us = t[t.size() / 2];
+  f.p99_us = t[static_cast<std::size_t>(0.99 * static_cast<double>(t.size() - 1))];
+  f.ctx_switches_per_round = static_cast<double>(after.first - before.first) / static_cast<double>(rounds);
+  f.cpu_us_per_round = (after.second - before.second) / static_cast<double>(rounds);
+  return f;
+}
+
+}  // namespace maptr::deploy
