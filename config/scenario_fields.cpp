@@ -1,0 +1,229 @@
+// The scenario's fields, declared once: YAML path, type, range, unit and description, and how
+// each is read from and written to the struct. Parsing, validation, to_yaml, set_field and the
+// error messages all come from these tables.
+#include <cmath>
+
+#include "config/fields.hpp"
+#include "model/motor.hpp"
+
+namespace maptr::config::detail {
+
+std::string name_problem(const std::string& n) {
+  const bool chars_ok = std::all_of(n.begin(), n.end(), [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '.' ||
+           ch == '_' || ch == '-';
+  });
+  if (n.empty() || n.size() > kMaxNameLength || !chars_ok || n[0] == '.')
+    return "must be 1 to " + std::to_string(kMaxNameLength) +
+           " characters from A-Z a-z 0-9 . _ - not starting with '.'";
+  return "";
+}
+
+std::string target_problem(const std::string& t) {
+  int side = 0, index = 0;
+  if (parse_agent_name(t, side, index)) return "";
+  return "must be an agent (L0, R3, ...), group-L, group-R, central, plant or discovery";
+}
+
+using S = Scenario;
+
+/// Top-level fields: the run and the robot's size, mass and motor.
+Table<S> run_fields() {
+  Table<S> v = {
+      text<S>(
+          "name", [](auto& s) -> auto& { return s.name; }, {}, "scenario name; names the run folder",
+          &name_problem, "A-Z a-z 0-9 . _ - (not first: .), 1 to 64 characters"),
+      text<S>(
+          "mode", [](auto& s) -> auto& { return s.mode; }, {"all", "ec"},
+          "all: every agent drives (the paper's NO); ec: energy-conscious (Levels 2 and 3)"),
+      real<S>(
+          "duration_s", [](auto& s) -> auto& { return s.duration_s; }, above(0, 1e6), "s",
+          "simulated time of the run"),
+      real<S>(
+          "tick_hz", [](auto& s) -> auto& { return s.tick_hz; }, closed(1, 1e4), "Hz",
+          "Level-1 control and plant tick rate"),
+      flag<S>(
+          "realtime", [](auto& s) -> auto& { return s.realtime; }, "pace ticks to the wall clock"),
+      integer<S>(
+          "trace_every", [](auto& s) -> auto& { return s.trace_every; }, closed(1, 1e6),
+          "write every n-th tick to trace.csv"),
+      real<S>(
+          "stop_below_speed_pct", [](auto& s) -> auto& { return s.stop_below_speed_pct; },
+          Range{0, 100, false, true, false, 1}, "%",
+          "end once the speed stays this far below its reference for 5 s (0: never)"),
+      integer<S>(
+          "agents", [](auto& s) -> auto& { return s.robot.agents; }, Range{4, 512, false, false, false, 4},
+          "number of wheel-motor agents N (N/2 per side, N/4 rows)"),
+      real<S>(
+          "gross_mass_kg", [](auto& s) -> auto& { return s.robot.gross_mass_kg; }, above(0, 1e4), "kg",
+          "payload + chassis + motors + wheels"),
+      text<S>(
+          "motor", [](auto& s) -> auto& { return s.robot.motor.type; }, {"I", "II"},
+          "motor type of the paper's Table 1"),
+  };
+  // The motor type selects the whole motor of the paper's Table 1.
+  for (auto& f : v)
+    if (f.info.path == "motor")
+      f.set = [](S& s, const Value& x) { s.robot.motor = model::motor_type(std::get<std::string>(x)); };
+  return v;
+}
+
+/// robot.* and battery.*: the geometry, friction and battery of model::RobotParams.
+Table<S> robot_fields() {
+  return {
+      real<S>(
+          "robot.track_m", [](auto& s) -> auto& { return s.robot.track_m; }, above(0, 100), "m",
+          "a: distance between the left and right wheel columns"),
+      real<S>(
+          "robot.row_spacing_m", [](auto& s) -> auto& { return s.robot.row_spacing_m; }, above(0, 100), "m",
+          "b: distance between wheel rows"),
+      real<S>(
+          "robot.wheel_radius_m", [](auto& s) -> auto& { return s.robot.wheel_radius_m; }, above(0, 10), "m",
+          "r: wheel radius"),
+      real<S>(
+          "robot.wheel_mass_kg", [](auto& s) -> auto& { return s.robot.wheel_mass_kg; }, closed(0, 1e3), "kg",
+          "m_w: mass of one wheel"),
+      real<S>(
+          "robot.mu_rolling", [](auto& s) -> auto& { return s.robot.mu_rolling; }, closed(0, 10), "1",
+          "mu_s: rolling friction coefficient"),
+      real<S>(
+          "robot.mu_lateral", [](auto& s) -> auto& { return s.robot.mu_lateral; }, closed(0, 10), "1",
+          "mu_l: lateral friction coefficient"),
+      real<S>(
+          "robot.k_s", [](auto& s) -> auto& { return s.robot.k_s; }, above(0, 1e6), "s/m",
+          "friction smoothing constant"),
+      real<S>(
+          "robot.gravity", [](auto& s) -> auto& { return s.robot.gravity; }, above(0, 100), "m/s^2",
+          "gravitational acceleration"),
+      real<S>(
+          "robot.yaw_inertia_kgm2", [](auto& s) -> auto& { return s.robot.yaw_inertia_kgm2; }, closed(0, 1e6),
+          "kg m^2", "I_zz (0: derived from a plate carrying the gross mass)"),
+      real<S>(
+          "robot.wheel_inertia_kgm2", [](auto& s) -> auto& { return s.robot.wheel_inertia_kgm2; },
+          closed(0, 1e3), "kg m^2", "wheel inertia (0: derived, disc m_w r^2 / 2)"),
+      real<S>(
+          "battery.initial_discharge_mAh", [](auto& s) -> auto& { return s.initial_discharge_mAh; },
+          closed(0, 1e7), "mAh", "battery discharge at the start (both groups)"),
+      real<S>(
+          "battery.capacity_mAh", [](auto& s) -> auto& { return s.robot.battery.capacity_mAh; },
+          above(0, 1e7), "mAh", "battery capacity"),
+      real<S>(
+          "battery.h", [](auto& s) -> auto& { return s.robot.battery.h; }, closed(-1e3, 1e3), "V",
+          "h of V_B(d) = h e^{w d} + y e^{z d}"),
+      real<S>(
+          "battery.w", [](auto& s) -> auto& { return s.robot.battery.w; }, closed(-1, 1), "1/mAh",
+          "w of V_B(d)"),
+      real<S>(
+          "battery.y", [](auto& s) -> auto& { return s.robot.battery.y; }, above(0, 1e3), "V",
+          "y of V_B(d): the full-battery voltage term"),
+      real<S>(
+          "battery.z", [](auto& s) -> auto& { return s.robot.battery.z; }, closed(-1, 1), "1/mAh",
+          "z of V_B(d)"),
+  };
+}
+
+/// control.* and trajectory.accel_mps2.
+Table<S> control_fields() {
+  return {
+      real<S>(
+          "control.kp", [](auto& s) -> auto& { return s.control.pid.kp; }, closed(0, 1e6), "V s/rad",
+          "wheel PID proportional gain (kp and ki not both zero)"),
+      real<S>(
+          "control.ki", [](auto& s) -> auto& { return s.control.pid.ki; }, closed(0, 1e6), "V/rad",
+          "wheel PID integral gain"),
+      real<S>(
+          "control.kd", [](auto& s) -> auto& { return s.control.pid.kd; }, closed(0, 1e6), "V s^2/rad",
+          "wheel PID derivative gain"),
+      real<S>(
+          "control.level2_period_s", [](auto& s) -> auto& { return s.control.level2_period_s; },
+          above(0, 1e6), "s", "Level-2 decision period (at least one tick)"),
+      integer<S>(
+          "control.horizon", [](auto& s) -> auto& { return s.control.horizon; }, closed(1, 1000),
+          "Level-2 horizon, steps"),
+      real<S>(
+          "control.horizon_step_s", [](auto& s) -> auto& { return s.control.horizon_step_s; }, above(0, 1e3),
+          "s", "Level-2 horizon step"),
+      real<S>(
+          "control.t_on_s", [](auto& s) -> auto& { return s.control.t_on_s; }, above(0, 1e7), "s",
+          "Level-3 period T_ON"),
+      real<S>(
+          "control.thermal_limit_s", [](auto& s) -> auto& { return s.control.thermal_limit_s; },
+          above(0, 1e7), "s", "longest continuous active time of an agent"),
+      flag<S>(
+          "control.oracle", [](auto& s) -> auto& { return s.control.oracle; },
+          "also run the exhaustive Level-2 search and report it"),
+      real<S>(
+          "control.group_hold_s", [](auto& s) -> auto& { return s.control.group_hold_s; }, closed(0, 1e6),
+          "s", "agents hold the last assignment this long without their group"),
+      real<S>(
+          "control.central_timeout_s", [](auto& s) -> auto& { return s.control.central_timeout_s; },
+          closed(0, 1e6), "s", "agents ramp to a stop after this long without central"),
+      real<S>(
+          "control.stop_decel_mps2", [](auto& s) -> auto& { return s.control.stop_decel_mps2; },
+          above(0, 1e3), "m/s^2", "deceleration of that ramp"),
+      real<S>(
+          "trajectory.accel_mps2", [](auto& s) -> auto& { return s.trajectory.accel_mps2; }, closed(0, 1e3),
+          "m/s^2", "ramp limit on the speed reference (0: steps)"),
+  };
+}
+
+/// The scenario's own fields, in the order to_yaml() writes them.
+const Table<Scenario>& scenario_table() {
+  static const Table<S> t = [] {
+    Table<S> v = run_fields();
+    for (auto part : {robot_fields(), control_fields()}) v.insert(v.end(), part.begin(), part.end());
+    return v;
+  }();
+  return t;
+}
+
+/// A segment as a file gives it: the segment, and an arc's radius if given instead of its yaw rate.
+
+const Table<SegmentInput>& segment_table() {
+  using G = SegmentInput;
+  static const Table<G> t = [] {
+    Table<G> v = {
+        text<G>(
+            "type", [](auto& g) -> auto& { return g.seg.type; }, {"straight", "arc", "stop"},
+            "straight, arc (needs a yaw rate or a radius) or stop"),
+        real<G>(
+            "speed_mps", [](auto& g) -> auto& { return g.seg.speed_mps; }, closed(0, 1e3), "m/s",
+            "body speed reference v_x (no reversing)"),
+        real<G>(
+            "yaw_rate_rad_s", [](auto& g) -> auto& { return g.seg.yaw_rate_rad_s; }, closed(-1e3, 1e3),
+            "rad/s", "yaw rate reference w (positive: left)"),
+        real<G>(
+            "radius_m", [](auto& g) -> auto& { return g.radius_m; }, Range{-1e6, 1e6, false, false, true, 1},
+            "m", "arc only, instead of yaw_rate_rad_s: w = speed_mps / radius_m (negative: right)"),
+        real<G>(
+            "duration_s", [](auto& g) -> auto& { return g.seg.duration_s; }, above(0, 1e6), "s",
+            "how long the segment lasts"),
+    };
+    v[2].set = [](G& g, const Value& x) {
+      g.seg.yaw_rate_rad_s = std::get<double>(x), g.has_yaw_rate = true;
+    };
+    v[3].set = [](G& g, const Value& x) { g.radius_m = std::get<double>(x), g.has_radius = true; };
+    v[3].get = nullptr;
+    v[3].info.input_only = true;
+    return v;
+  }();
+  return t;
+}
+
+const Table<FaultSpec>& fault_table() {
+  using F = FaultSpec;
+  static const Table<F> t = {
+      text<F>(
+          "target", [](auto& f) -> auto& { return f.target; },
+          {"group-L", "group-R", "central", "plant", "discovery"}, "process to act on", &target_problem,
+          "an agent of the robot (L0, R3, ...)"),
+      text<F>(
+          "action", [](auto& f) -> auto& { return f.action; }, {"kill", "restart"}, "what to do to it"),
+      real<F>(
+          "at_s", [](auto& f) -> auto& { return f.at_s; }, closed(0, 1e6), "s",
+          "simulated time of the action (within the run)"),
+  };
+  return t;
+}
+
+}  // namespace maptr::config::detail
