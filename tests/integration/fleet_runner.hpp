@@ -59,47 +59,6 @@ inline std::vector<std::string> run_args(const std::string& out, std::vector<std
   return a;
 }
 
-inline CliResult run_cli(std::vector<std::string> args, const std::string& run_dir, double timeout_s) {
-  CliResult r;
-  r.run_dir = run_dir;
-  const std::string log = run_dir + ".out";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(fd, 1);
-    dup2(fd, 2);
-    std::vector<char*> argv;
-    std::string bin = std::string(MAPTR_BIN_DIR) + "/maptr";
-    argv.push_back(bin.data());
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(bin.c_str(), argv.data());
-    _exit(127);
-  }
-  const auto t0 = std::chrono::steady_clock::now();
-  int st = 0;
-  for (;;) {
-    const pid_t w = waitpid(pid, &st, WNOHANG);
-    if (w == pid) break;
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > timeout_s) {
-      r.timed_out = true;
-      kill(pid, SIGKILL);  // the fleet dies with it (PR_SET_PDEATHSIG)
-      waitpid(pid, &st, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  r.exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.output = ss.str();
-  std::filesystem::remove(log);
-  std::ifstream js(run_dir + "/summary.json");
-  if (js) js >> r.summary;
-  return r;
-}
-
 /// Starts `maptr ARGS` in the background (output to OUT_LOG); returns its PID.
 inline pid_t start_cli(std::vector<std::string> args, const std::string& out_log) {
   const pid_t pid = fork();
@@ -118,7 +77,11 @@ inline pid_t start_cli(std::vector<std::string> args, const std::string& out_log
   return pid;
 }
 
-/// Waits for a child to exit within timeout_s (killed by its PID after that); returns its exit code.
+/// wait_child's answer for a child that had to be killed.
+inline constexpr int kTimedOut = -2;
+
+/// Waits for a child to exit within timeout_s (killed by its PID after that, and the fleet with
+/// it: PR_SET_PDEATHSIG); returns its exit code, -1 for a signal, kTimedOut.
 inline int wait_child(pid_t pid, double timeout_s) {
   const auto t0 = std::chrono::steady_clock::now();
   int st = 0;
@@ -126,11 +89,29 @@ inline int wait_child(pid_t pid, double timeout_s) {
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > timeout_s) {
       kill(pid, SIGKILL);
       waitpid(pid, &st, 0);
-      return -2;
+      return kTimedOut;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/// Runs `maptr ARGS` to its end (killed by its PID after timeout_s); output and summary.json.
+inline CliResult run_cli(std::vector<std::string> args, const std::string& run_dir, double timeout_s) {
+  CliResult r;
+  r.run_dir = run_dir;
+  const std::string log = run_dir + ".out";
+  const int code = wait_child(start_cli(std::move(args), log), timeout_s);
+  r.timed_out = code == kTimedOut;
+  r.exit_code = r.timed_out ? -1 : code;
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.output = ss.str();
+  std::filesystem::remove(log);
+  std::ifstream js(run_dir + "/summary.json");
+  if (js) js >> r.summary;
+  return r;
 }
 
 /// Polls until pred() holds or timeout_s passes.
