@@ -36,6 +36,23 @@ control::GroupConfig make_config(const config::Scenario& s) {
   c.oracle = s.control.oracle;
   return c;
 }
+/// What group `side` reads from a tick.
+control::GroupInput group_input(const msg::PlantTick& t, int side) {
+  control::GroupInput in;
+  in.tick = static_cast<long long>(t.tick());
+  in.t = t.t();
+  in.v_x = t.v_x();
+  in.w = t.w();
+  const msg::SideTick& own = t.sides()[side];
+  in.phidot_side = own.phidot();
+  in.phidot_ref_L = t.sides()[msg::SIDE_L].phidot_ref();
+  in.phidot_ref_R = t.sides()[msg::SIDE_R].phidot_ref();
+  in.battery_V = own.battery_V();
+  in.live = own.live();
+  in.active = own.active();
+  in.n_other = own.relay_count();
+  return in;
+}
 }  // namespace
 
 GroupNode::GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<spdlog::logger> log)
@@ -59,19 +76,7 @@ int GroupNode::run() {
   if (l2_new) l2 << "t_s,n_live,n_other,status,relaxed,ipopt_n_active,oracle_n_active,n_target,solve_ms\n";
   bool infeasible = false;
   const int code = follower.run([&](const msg::PlantTick& t) {
-    control::GroupInput in;
-    in.tick = static_cast<long long>(t.tick());
-    in.t = t.t();
-    in.v_x = t.v_x();
-    in.w = t.w();
-    const msg::SideTick& own = t.sides()[side_];
-    in.phidot_side = own.phidot();
-    in.phidot_ref_L = t.sides()[msg::SIDE_L].phidot_ref();
-    in.phidot_ref_R = t.sides()[msg::SIDE_R].phidot_ref();
-    in.battery_V = own.battery_V();
-    in.live = own.live();
-    in.active = own.active();
-    in.n_other = own.relay_count();
+    const control::GroupInput in = group_input(t, side_);
     const control::GroupDecision d = core_.step(in);
     if (d.level2_ran && (d.level2_status == control::kL2Infeasible) != infeasible) {
       infeasible = !infeasible;

@@ -43,6 +43,18 @@ int count(const std::vector<uint8_t>& m) {
   return n;
 }
 
+/// What a MembershipEvent says, for the DDS-free membership (kOther: a value this build does not
+/// know).
+LauncherEvent launcher_event(msg::MemberEvent kind) {
+  switch (kind) {
+    case msg::MEMBER_DIED:
+      return LauncherEvent::kDied;
+    case msg::MEMBER_STARTED:
+      return LauncherEvent::kStarted;
+  }
+  return LauncherEvent::kOther;
+}
+
 sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConfig& c) {
   sim::PlantCoreConfig pc;
   pc.robot = sc.robot;
@@ -285,10 +297,7 @@ void PlantLoop::log_membership() {
 // matched and ready is waited for from the next tick on (its old writer no longer counts).
 void PlantLoop::apply_launcher_events() {
   for (auto& [e, h] : members_.drain()) {
-    const LauncherEvent kind = e.kind() == msg::MEMBER_DIED      ? LauncherEvent::kDied
-                               : e.kind() == msg::MEMBER_STARTED ? LauncherEvent::kStarted
-                                                                 : LauncherEvent::kOther;
-    membership_.on_launcher(e.seq(), kind, e.name());
+    membership_.on_launcher(e.seq(), launcher_event(e.kind()), e.name());
   }
   log_membership();
 }
