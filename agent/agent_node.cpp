@@ -3,17 +3,27 @@
 #include <unistd.h>
 
 #include "comm/follower.hpp"
+#include "comm/side.hpp"
 #include "config/scenario.hpp"
 
 namespace maptr::agent {
 
 namespace {
-static_assert(static_cast<uint8_t>(control::AgentState::kIdle) == msg::AGENT_IDLE &&
-                  static_cast<uint8_t>(control::AgentState::kActive) == msg::AGENT_ACTIVE &&
-                  static_cast<uint8_t>(control::AgentState::kHolding) == msg::AGENT_HOLDING &&
-                  static_cast<uint8_t>(control::AgentState::kCoasting) == msg::AGENT_COASTING &&
-                  static_cast<uint8_t>(control::AgentState::kStopping) == msg::AGENT_STOPPING,
-              "the agent core's states are the message's");
+msg::AgentState to_msg(control::AgentState s) {
+  switch (s) {
+    case control::AgentState::kIdle:
+      return msg::AGENT_IDLE;
+    case control::AgentState::kActive:
+      return msg::AGENT_ACTIVE;
+    case control::AgentState::kHolding:
+      return msg::AGENT_HOLDING;
+    case control::AgentState::kCoasting:
+      return msg::AGENT_COASTING;
+    case control::AgentState::kStopping:
+      return msg::AGENT_STOPPING;
+  }
+  return msg::AGENT_IDLE;
+}
 
 control::AgentConfig make_config(const config::Scenario& s) {
   control::AgentConfig c;
@@ -37,23 +47,24 @@ int AgentNode::run() {
   return follower.run([&](const msg::PlantTick& t) {
     control::AgentInput in;
     in.tick = static_cast<long long>(t.tick());
-    in.phidot_rad_s = side_ == 0 ? t.phidot_L() : t.phidot_R();
-    in.battery_V = side_ == 0 ? t.battery_V_L() : t.battery_V_R();
-    in.side_active_V = side_ == 0 ? t.V_active_L() : t.V_active_R();
-    in.phidot_ref_rad_s = side_ == 0 ? t.phidot_ref_L() : t.phidot_ref_R();
+    const msg::SideTick& own = t.sides()[side_];
+    in.phidot_rad_s = own.phidot();
+    in.battery_V = own.battery_V();
+    in.side_active_V = own.V_active();
+    in.phidot_ref_rad_s = own.phidot_ref();
     in.central_stamp = t.central_stamp();
-    in.group_stamp = side_ == 0 ? t.group_stamp_L() : t.group_stamp_R();
-    in.assigned = (side_ == 0 ? t.active_L() : t.active_R())[index_] != 0;
+    in.group_stamp = own.group_stamp();
+    in.assigned = own.active()[index_] != 0;
     const control::AgentOutput out = core_.step(in);
     msg::AgentReply rep;
     rep.tick(t.tick());
-    rep.side(static_cast<uint8_t>(side_));
+    rep.side(comm::to_msg_side(side_));
     rep.index(static_cast<uint16_t>(index_));
     rep.pid(static_cast<uint32_t>(getpid()));
     rep.voltage_V(out.voltage_V);
     rep.current_A(out.current_A);
     rep.efficiency(out.efficiency);
-    rep.state(static_cast<uint8_t>(out.state));
+    rep.state(to_msg(out.state));
     rep.rejected(follower.rejected());
     w_reply->write(&rep);
   });

@@ -23,15 +23,16 @@ int CentralNode::run() {
   comm::TickFollower follower(args_, msg::NODE_CENTRAL, log_);
   auto* w_cmd = follower.answer_writer<msg::CentralCommandPubSubType>(comm::topic::kCentral);
   return follower.run([&](const msg::PlantTick& t) {
-    const control::CentralOutput o = core_.step(t.t(), t.n_active_L(), t.n_active_R());
+    const control::CentralOutput o =
+        core_.step(t.t(), t.sides()[msg::SIDE_L].n_active(), t.sides()[msg::SIDE_R].n_active());
     msg::CentralCommand c;
     c.tick(t.tick());
     c.v_x_ref(o.v_x_ref);
     c.w_ref(o.w_ref);
-    c.phidot_ref_L(o.phidot_ref_L);
-    c.phidot_ref_R(o.phidot_ref_R);
-    c.relay_count_for_L(static_cast<uint16_t>(o.relay_for_L));
-    c.relay_count_for_R(static_cast<uint16_t>(o.relay_for_R));
+    c.phidot_ref()[msg::SIDE_L] = o.phidot_ref_L;
+    c.phidot_ref()[msg::SIDE_R] = o.phidot_ref_R;
+    c.relay_count_for()[msg::SIDE_L] = static_cast<uint16_t>(o.relay_for_L);
+    c.relay_count_for()[msg::SIDE_R] = static_cast<uint16_t>(o.relay_for_R);
     c.segment(static_cast<uint16_t>(o.segment));
     c.rejected(follower.rejected());
     w_cmd->write(&c);

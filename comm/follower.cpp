@@ -9,16 +9,19 @@
 namespace maptr::comm {
 
 bool tick_valid(const msg::PlantTick& t, std::size_t per_side) {
-  for (double v : {t.t(), t.dt(), t.x(), t.y(), t.theta(), t.v_x(), t.w(), t.phidot_L(), t.phidot_R(),
-                   t.battery_V_L(), t.battery_V_R(), t.discharge_mAh_L(), t.discharge_mAh_R(), t.energy_J(),
-                   t.distance_m(), t.phidot_ref_L(), t.phidot_ref_R(), t.V_active_L(), t.V_active_R()})
+  for (double v : {t.t(), t.dt(), t.x(), t.y(), t.theta(), t.v_x(), t.w(), t.energy_J(), t.distance_m()})
     if (!std::isfinite(v)) return false;
-  return t.active_L().size() == per_side && t.active_R().size() == per_side && t.live_L().size() == per_side &&
-         t.live_R().size() == per_side && t.battery_V_L() >= 0 && t.battery_V_R() >= 0 &&
-         t.V_active_L() >= 0 && t.V_active_R() >= 0;
+  for (const msg::SideTick& s : t.sides()) {
+    for (double v : {s.phidot(), s.battery_V(), s.discharge_mAh(), s.phidot_ref(), s.V_active()})
+      if (!std::isfinite(v)) return false;
+    if (s.active().size() != per_side || s.live().size() != per_side || s.battery_V() < 0 || s.V_active() < 0)
+      return false;
+  }
+  return true;
 }
 
-TickFollower::TickFollower(const ProcessArgs& args, uint8_t node_kind, std::shared_ptr<spdlog::logger> log)
+TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
+                           std::shared_ptr<spdlog::logger> log)
     : args_(args), kind_(node_kind), log_(std::move(log)) {
   participant_ = std::make_unique<Participant>(args_.name, args_.dds);
   auto& p = *participant_;

@@ -23,7 +23,7 @@ bool tick_valid(const msg::PlantTick& t, std::size_t per_side);
 
 class TickFollower {
  public:
-  TickFollower(const ProcessArgs& args, uint8_t node_kind, std::shared_ptr<spdlog::logger> log);
+  TickFollower(const ProcessArgs& args, msg::NodeKind node_kind, std::shared_ptr<spdlog::logger> log);
 
   /// Creates the writer this process answers each tick on (readiness waits for its match).
   template <class PubSubType>
@@ -40,7 +40,7 @@ class TickFollower {
 
  private:
   const ProcessArgs& args_;
-  uint8_t kind_;
+  msg::NodeKind kind_;
   std::shared_ptr<spdlog::logger> log_;
   // Listeners first: they must outlive the participant that calls them.
   Signal signal_;

@@ -64,7 +64,7 @@ std::shared_ptr<spdlog::logger> make_logger(const ProcessArgs& a) {
 
 namespace maptr::comm {
 
-void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, uint8_t kind) {
+void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind) {
   msg::NodeReady r;
   r.name(name);
   r.kind(kind);

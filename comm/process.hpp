@@ -10,6 +10,7 @@
 
 #include "comm/dds.hpp"
 #include "config/scenario.hpp"
+#include "idl/maptr.h"
 
 namespace maptr::comm {
 
@@ -37,7 +38,7 @@ std::atomic<bool>& stop_flag();
 namespace maptr::comm {
 
 /// Publishes this process's NodeReady (once every needed endpoint is matched).
-void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, uint8_t kind);
+void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind);
 
 /// Follows the plant's liveliness on a reader of its ticks. The plant counts as lost once a
 /// tick of it was received, then it was reported gone (lease expired or writer unmatched) and not heard from again

@@ -3,14 +3,25 @@
 #include <fstream>
 
 #include "comm/follower.hpp"
+#include "comm/side.hpp"
 #include "config/scenario.hpp"
 
 namespace maptr::group {
 
 namespace {
-static_assert(control::kL2None == msg::L2_NONE && control::kL2Ok == msg::L2_OK &&
-                  control::kL2Infeasible == msg::L2_INFEASIBLE && control::kL2Failed == msg::L2_SOLVER_FAILED,
-              "the group core's Level-2 status values are the message's");
+/// The group core's Level-2 outcome (control::Level2Status) as the message carries it.
+msg::Level2Status to_msg_level2(uint8_t s) {
+  switch (s) {
+    case control::kL2Ok:
+      return msg::L2_OK;
+    case control::kL2Infeasible:
+      return msg::L2_INFEASIBLE;
+    case control::kL2Failed:
+      return msg::L2_SOLVER_FAILED;
+    default:
+      return msg::L2_NONE;
+  }
+}
 
 control::GroupConfig make_config(const config::Scenario& s) {
   control::GroupConfig c;
@@ -24,6 +35,23 @@ control::GroupConfig make_config(const config::Scenario& s) {
   c.thermal_limit_s = s.control.thermal_limit_s;
   c.oracle = s.control.oracle;
   return c;
+}
+/// What group `side` reads from a tick.
+control::GroupInput group_input(const msg::PlantTick& t, int side) {
+  control::GroupInput in;
+  in.tick = static_cast<long long>(t.tick());
+  in.t = t.t();
+  in.v_x = t.v_x();
+  in.w = t.w();
+  const msg::SideTick& own = t.sides()[side];
+  in.phidot_side = own.phidot();
+  in.phidot_ref_L = t.sides()[msg::SIDE_L].phidot_ref();
+  in.phidot_ref_R = t.sides()[msg::SIDE_R].phidot_ref();
+  in.battery_V = own.battery_V();
+  in.live = own.live();
+  in.active = own.active();
+  in.n_other = own.relay_count();
+  return in;
 }
 }  // namespace
 
@@ -48,20 +76,9 @@ int GroupNode::run() {
   if (l2_new) l2 << "t_s,n_live,n_other,status,relaxed,ipopt_n_active,oracle_n_active,n_target,solve_ms\n";
   bool infeasible = false;
   const int code = follower.run([&](const msg::PlantTick& t) {
-    control::GroupInput in;
-    in.tick = static_cast<long long>(t.tick());
-    in.t = t.t();
-    in.v_x = t.v_x();
-    in.w = t.w();
-    in.phidot_side = side_ == 0 ? t.phidot_L() : t.phidot_R();
-    in.phidot_ref_L = t.phidot_ref_L();
-    in.phidot_ref_R = t.phidot_ref_R();
-    in.battery_V = side_ == 0 ? t.battery_V_L() : t.battery_V_R();
-    in.live = side_ == 0 ? t.live_L() : t.live_R();
-    in.active = side_ == 0 ? t.active_L() : t.active_R();
-    in.n_other = side_ == 0 ? t.relay_count_L() : t.relay_count_R();
+    const control::GroupInput in = group_input(t, side_);
     const control::GroupDecision d = core_.step(in);
-    if (d.level2_ran && (d.level2_status == msg::L2_INFEASIBLE) != infeasible) {
+    if (d.level2_ran && (d.level2_status == control::kL2Infeasible) != infeasible) {
       infeasible = !infeasible;
       if (infeasible)
         log_->warn(
@@ -77,14 +94,14 @@ int GroupNode::run() {
          << std::flush;
     msg::GroupStatus st;
     st.tick(t.tick());
-    st.side(static_cast<uint8_t>(side_));
+    st.side(comm::to_msg_side(side_));
     st.active(d.active);
     st.live(in.live);
     st.wear_m(core_.ledger().wear_m);
     st.n_active(static_cast<uint16_t>(d.n_active));
     st.n_live(static_cast<uint16_t>(d.n_live));
     st.n_other(static_cast<uint16_t>(in.n_other));
-    st.level2_status(d.level2_status);
+    st.level2_status(to_msg_level2(d.level2_status));
     st.level2_relaxed(d.level2_relaxed);
     st.oracle_n_active(static_cast<int16_t>(d.oracle_n_active));
     st.solve_time_ms(d.solve_time_ms);

@@ -43,6 +43,18 @@ int count(const std::vector<uint8_t>& m) {
   return n;
 }
 
+/// What a MembershipEvent says, for the DDS-free membership (kOther: a value this build does not
+/// know).
+LauncherEvent launcher_event(msg::MemberEvent kind) {
+  switch (kind) {
+    case msg::MEMBER_DIED:
+      return LauncherEvent::kDied;
+    case msg::MEMBER_STARTED:
+      return LauncherEvent::kStarted;
+  }
+  return LauncherEvent::kOther;
+}
+
 sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConfig& c) {
   sim::PlantCoreConfig pc;
   pc.robot = sc.robot;
@@ -68,8 +80,8 @@ struct Commands {
   std::vector<uint8_t> mask[2];
   long long group_stamp[2] = {-1, -1};
   long long central_stamp = -1;
-  double ref_L = 0.0, ref_R = 0.0;
-  int relay_L = 0, relay_R = 0;
+  double ref[2] = {0.0, 0.0};  ///< rad/s, wheel references per side
+  int relay[2] = {0, 0};       ///< the other side's active count, relayed to each side
 };
 
 /// Wall-clock instants of one lock-step tick.
@@ -88,7 +100,7 @@ class PlantLoop {
   /// stamps the membership records with its time and notes why the run ends.
   bool last_tick();
   void pass_gate();
-  void publish(uint8_t run_state);
+  void publish(msg::RunState run_state);
   /// Waits until tick k is complete; false on the stop signal.
   bool collect();
   void integrate();
@@ -237,7 +249,7 @@ void PlantLoop::wait_gate(long long k) {
   }
 }
 
-void PlantLoop::publish(uint8_t run_state) {
+void PlantLoop::publish(msg::RunState run_state) {
   times_.publish = Clock::now();
   msg::PlantTick& t = sent_;
   t.tick(static_cast<uint64_t>(core_.tick()));
@@ -249,29 +261,23 @@ void PlantLoop::publish(uint8_t run_state) {
   t.theta(x[model::kTheta]);
   t.v_x(x[model::kVx]);
   t.w(x[model::kW]);
-  t.phidot_L(core_.phidot(0));
-  t.phidot_R(core_.phidot(1));
-  t.battery_V_L(core_.battery_V(0));
-  t.battery_V_R(core_.battery_V(1));
-  t.V_active_L(core_.active_voltage(0));
-  t.V_active_R(core_.active_voltage(1));
-  t.discharge_mAh_L(x[model::kChargeL]);
-  t.discharge_mAh_R(x[model::kChargeR]);
   t.energy_J(x[model::kEnergyL] + x[model::kEnergyR]);
   t.distance_m(x[model::kDistance]);
-  t.phidot_ref_L(cmd_.ref_L);
-  t.phidot_ref_R(cmd_.ref_R);
   t.central_stamp(cmd_.central_stamp);
-  t.active_L(cmd_.mask[0]);
-  t.active_R(cmd_.mask[1]);
-  t.group_stamp_L(cmd_.group_stamp[0]);
-  t.group_stamp_R(cmd_.group_stamp[1]);
-  t.live_L(membership_.live_mask(0));
-  t.live_R(membership_.live_mask(1));
-  t.n_active_L(static_cast<uint16_t>(count(cmd_.mask[0])));
-  t.n_active_R(static_cast<uint16_t>(count(cmd_.mask[1])));
-  t.relay_count_L(static_cast<uint16_t>(cmd_.relay_L));
-  t.relay_count_R(static_cast<uint16_t>(cmd_.relay_R));
+  const int charge[2] = {model::kChargeL, model::kChargeR};
+  for (int s = 0; s < 2; ++s) {
+    msg::SideTick& side = t.sides()[s];
+    side.phidot(core_.phidot(s));
+    side.battery_V(core_.battery_V(s));
+    side.V_active(core_.active_voltage(s));
+    side.discharge_mAh(x[charge[s]]);
+    side.phidot_ref(cmd_.ref[s]);
+    side.active(cmd_.mask[s]);
+    side.live(membership_.live_mask(s));
+    side.group_stamp(cmd_.group_stamp[s]);
+    side.n_active(static_cast<uint16_t>(count(cmd_.mask[s])));
+    side.relay_count(static_cast<uint16_t>(cmd_.relay[s]));
+  }
   t.run_state(run_state);
   w_tick_->write(&t);
 }
@@ -291,10 +297,7 @@ void PlantLoop::log_membership() {
 // matched and ready is waited for from the next tick on (its old writer no longer counts).
 void PlantLoop::apply_launcher_events() {
   for (auto& [e, h] : members_.drain()) {
-    const LauncherEvent kind = e.kind() == msg::MEMBER_DIED      ? LauncherEvent::kDied
-                               : e.kind() == msg::MEMBER_STARTED ? LauncherEvent::kStarted
-                                                                 : LauncherEvent::kOther;
-    membership_.on_launcher(e.seq(), kind, e.name());
+    membership_.on_launcher(e.seq(), launcher_event(e.kind()), e.name());
   }
   log_membership();
 }
@@ -330,7 +333,7 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
       continue;
     }
     if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
-    membership_.on_answer({Role::kAgent, r.side(), r.index()}, writer_id(h));
+    membership_.on_answer({Role::kAgent, static_cast<int>(r.side()), r.index()}, writer_id(h));
     cmd_.applied[r.side()][r.index()] = {true, drives(r), r.voltage_V(), r.current_A(), r.efficiency()};
   }
 }
@@ -358,10 +361,10 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
       continue;
     }
     membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));
-    cmd_.ref_L = c.phidot_ref_L();
-    cmd_.ref_R = c.phidot_ref_R();
-    cmd_.relay_L = c.relay_count_for_L();
-    cmd_.relay_R = c.relay_count_for_R();
+    for (int s = 0; s < 2; ++s) {
+      cmd_.ref[s] = c.phidot_ref()[s];
+      cmd_.relay[s] = c.relay_count_for()[s];
+    }
     cmd_.central_stamp = k;
   }
 }
@@ -401,7 +404,7 @@ bool PlantLoop::collect() {
 
 void PlantLoop::integrate() {
   // Row k is written before the integration, so that a run whose integration fails keeps it.
-  files_->write(core_.hold(cmd_.applied[0], cmd_.applied[1], cmd_.ref_L, cmd_.ref_R,
+  files_->write(core_.hold(cmd_.applied[0], cmd_.applied[1], cmd_.ref[0], cmd_.ref[1],
                            membership_.live_count(0), membership_.live_count(1)));
   core_.integrate();
   times_.done = Clock::now();
@@ -428,7 +431,7 @@ int PlantLoop::report(bool stopped) {
   for (int s = 0; s < 2; ++s) e.live_agents[s] = membership_.live_count(s);
   e.reached_reference = core_.reached_reference();
   e.speed_lost = core_.speed_lost();
-  e.ref_speed_mps = 0.5 * (cmd_.ref_L + cmd_.ref_R) * sc_.robot.wheel_radius_m;
+  e.ref_speed_mps = 0.5 * (cmd_.ref[0] + cmd_.ref[1]) * sc_.robot.wheel_radius_m;
   e.speed_mps = core_.state()[model::kVx];
   ReportInputs in;
   in.status = run_status(e, c_.degraded_band_pct);

@@ -16,11 +16,15 @@
 
 namespace maptr::deploy::fleet {
 
+/// What a child process is (the launcher's DDS side names it with msg::NodeKind).
+enum class ChildKind : uint8_t { kAgent, kGroup, kCentral, kPlant };
+
 struct Child {
   std::string name, binary;
   std::vector<std::string> args;
-  uint8_t kind = 0, side = 0;  ///< msg::NODE_*, msg::SIDE_*
-  uint16_t index = 0;
+  ChildKind kind = ChildKind::kPlant;
+  int side = 0;        ///< agents and groups: 0 = left, 1 = right
+  uint16_t index = 0;  ///< agents: index within the side
   pid_t pid = -1;
   bool running = false;
   bool external = false;  ///< started by the user, not by the launcher

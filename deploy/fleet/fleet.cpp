@@ -97,7 +97,7 @@ double Fleet::since(Clock::time_point t0) const {
 void Fleet::make_children() {
   const std::vector<std::string> common = {"--config", cfg_path_, "--run-dir", o_.run_dir};
   auto add = [&](const std::string& name, const std::string& bin, std::vector<std::string> extra,
-                 uint8_t kind, uint8_t side, uint16_t index) {
+                 ChildKind kind, int side, uint16_t index) {
     Child c;
     c.name = name;
     c.binary = o_.bin_dir + "/" + bin;
@@ -111,14 +111,14 @@ void Fleet::make_children() {
     if (!std::filesystem::exists(c.binary)) throw std::runtime_error("missing process binary " + c.binary);
     kids_.push_back(c);
   };
-  add("plant", "maptr_plant", {}, msg::NODE_PLANT, 0, 0);
-  add("central", "maptr_central", {}, msg::NODE_CENTRAL, 0, 0);
-  add("group-L", "maptr_group", {"--side", "L"}, msg::NODE_GROUP, 0, 0);
-  add("group-R", "maptr_group", {"--side", "R"}, msg::NODE_GROUP, 1, 0);
+  add("plant", "maptr_plant", {}, ChildKind::kPlant, 0, 0);
+  add("central", "maptr_central", {}, ChildKind::kCentral, 0, 0);
+  add("group-L", "maptr_group", {"--side", "L"}, ChildKind::kGroup, 0, 0);
+  add("group-R", "maptr_group", {"--side", "R"}, ChildKind::kGroup, 1, 0);
   for (int s = 0; s < 2; ++s)
     for (int j = 0; j < sc_.robot.per_side(); ++j) {
       const std::string n = config::agent_name(s, j);
-      add(n, "maptr_agent", {"--id", n}, msg::NODE_AGENT, static_cast<uint8_t>(s), static_cast<uint16_t>(j));
+      add(n, "maptr_agent", {"--id", n}, ChildKind::kAgent, s, static_cast<uint16_t>(j));
     }
 }
 

@@ -60,7 +60,7 @@ class Fleet {
   void announce_restarted();
   void reap(bool expected);
   void on_exit(const Exit& e, bool expected);
-  void publish_member(const Child& c, uint8_t kind);
+  void publish_member(const Child& c, msg::MemberEvent kind);
   void apply_fault(const config::FaultSpec& f, double at_s);
   void open_gate(const msg::FaultGate& g);
   bool gate_pending(const std::vector<std::string>& killed) const;

@@ -2,6 +2,7 @@
 #include <csignal>
 #include <cstdio>
 
+#include "comm/side.hpp"
 #include "deploy/fleet/fleet.hpp"
 
 namespace maptr::deploy::fleet {
@@ -11,6 +12,20 @@ double wall_ms_now() {
   return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
+
+msg::NodeKind to_msg(ChildKind k) {
+  switch (k) {
+    case ChildKind::kAgent:
+      return msg::NODE_AGENT;
+    case ChildKind::kGroup:
+      return msg::NODE_GROUP;
+    case ChildKind::kCentral:
+      return msg::NODE_CENTRAL;
+    case ChildKind::kPlant:
+      return msg::NODE_PLANT;
+  }
+  return msg::NODE_PLANT;
+}
 }  // namespace
 
 Child* Fleet::find(const std::string& name) {
@@ -19,12 +34,12 @@ Child* Fleet::find(const std::string& name) {
   return nullptr;
 }
 
-void Fleet::publish_member(const Child& c, uint8_t kind) {
+void Fleet::publish_member(const Child& c, msg::MemberEvent kind) {
   msg::MembershipEvent e;
   e.seq(++member_seq_);
   e.name(c.name);
-  e.node_kind(c.kind);
-  e.side(c.side);
+  e.node_kind(to_msg(c.kind));
+  e.side(comm::to_msg_side(c.side));
   e.index(c.index);
   e.kind(kind);
   e.wall_s(since(t_launch_));
@@ -137,7 +152,8 @@ void Fleet::open_gate(const msg::FaultGate& g) {
 
 void Fleet::take_ticks() {
   for (auto& [t, h] : ticks_.drain())
-    clock_.on_tick(writer_prefix(h), {t.t(), t.v_x(), t.energy_J(), t.n_active_L(), t.n_active_R()});
+    clock_.on_tick(writer_prefix(h), {t.t(), t.v_x(), t.energy_J(), t.sides()[msg::SIDE_L].n_active(),
+                                      t.sides()[msg::SIDE_R].n_active()});
 }
 
 void Fleet::take_commands() {

@@ -1,15 +1,18 @@
-// comm/ on its own: the fleet's participant-id and GUID plan, the shipped QoS profiles and
-// their override through FASTRTPS_DEFAULT_PROFILES_FILE. Real DDS participants, no fleet.
+// comm/ on its own: the fleet's participant-id and GUID plan, the tick's per-side data on the
+// wire and the followers' check of it, the shipped QoS profiles and their override through
+// FASTRTPS_DEFAULT_PROFILES_FILE. Real DDS participants, no fleet.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "comm/dds.hpp"
 #include "comm/fleet_guid.hpp"
+#include "comm/follower.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::comm {
@@ -64,6 +67,73 @@ TEST(FleetIds, PrefixesKeepFastDdsSameHostAndDistinctProcesses) {
   gb.guidPrefix = b;
   EXPECT_TRUE(ga.is_on_same_host_as(gb));
   EXPECT_FALSE(ga.is_on_same_process_as(gb));  // else Fast DDS would deliver intraprocess
+}
+
+/// A well-formed tick of 2 x 4 agents whose sides differ in every field.
+msg::PlantTick two_sided_tick() {
+  msg::PlantTick t;
+  t.tick(42);
+  t.t(0.42);
+  t.dt(0.01);
+  for (int s = 0; s < 2; ++s) {
+    msg::SideTick& side = t.sides()[s];
+    side.phidot(100.0 + s);
+    side.battery_V(23.0 - s);
+    side.V_active(11.0 + s);
+    side.discharge_mAh(5.0 + s);
+    side.phidot_ref(101.0 + s);
+    side.active(s == msg::SIDE_L ? std::vector<uint8_t>{1, 1, 0, 0} : std::vector<uint8_t>{1, 0, 0, 0});
+    side.live(std::vector<uint8_t>{1, 1, 1, static_cast<uint8_t>(s)});
+    side.group_stamp(40 + s);
+    side.n_active(static_cast<uint16_t>(2 - s));
+    side.relay_count(static_cast<uint16_t>(1 + s));
+  }
+  t.run_state(msg::RUN_FINISHED);
+  return t;
+}
+
+TEST(TickWire, PerSideDataAndEnumsSurviveSerialization) {
+  msg::PlantTick sent = two_sided_tick();
+  msg::PlantTickPubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sent)());
+  ASSERT_TRUE(type.serialize(&sent, &payload));
+  msg::PlantTick got;
+  ASSERT_TRUE(type.deserialize(&payload, &got));
+  EXPECT_TRUE(got == sent);
+  EXPECT_EQ(got.run_state(), msg::RUN_FINISHED);
+  EXPECT_EQ(got.sides()[msg::SIDE_R].active(), (std::vector<uint8_t>{1, 0, 0, 0}));
+  EXPECT_EQ(got.sides()[msg::SIDE_L].relay_count(), 1);
+  EXPECT_EQ(got.sides()[msg::SIDE_R].group_stamp(), 41);
+
+  msg::CentralCommand c;
+  c.phidot_ref({40.0, -40.0});
+  c.relay_count_for({3, 5});
+  msg::CentralCommandPubSubType ctype;
+  eprosima::fastrtps::rtps::SerializedPayload_t cpayload(ctype.getSerializedSizeProvider(&c)());
+  ASSERT_TRUE(ctype.serialize(&c, &cpayload));
+  msg::CentralCommand cgot;
+  ASSERT_TRUE(ctype.deserialize(&cpayload, &cgot));
+  EXPECT_EQ(cgot.phidot_ref()[msg::SIDE_R], -40.0);
+  EXPECT_EQ(cgot.relay_count_for()[msg::SIDE_L], 3);
+}
+
+TEST(TickWire, AFollowerChecksEachSide) {
+  EXPECT_TRUE(tick_valid(two_sided_tick(), 4));
+  EXPECT_FALSE(tick_valid(two_sided_tick(), 5));  // masks of another fleet size
+  for (int s = 0; s < 2; ++s) {
+    msg::PlantTick t = two_sided_tick();
+    t.sides()[s].phidot_ref(std::nan(""));
+    EXPECT_FALSE(tick_valid(t, 4)) << "side " << s;
+    t = two_sided_tick();
+    t.sides()[s].live(std::vector<uint8_t>{1, 1, 1});
+    EXPECT_FALSE(tick_valid(t, 4)) << "side " << s;
+    t = two_sided_tick();
+    t.sides()[s].battery_V(-1.0);
+    EXPECT_FALSE(tick_valid(t, 4)) << "side " << s;
+    t = two_sided_tick();
+    t.sides()[s].V_active(-0.5);
+    EXPECT_FALSE(tick_valid(t, 4)) << "side " << s;
+  }
 }
 
 DdsOptions private_options() {

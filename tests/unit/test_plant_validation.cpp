@@ -30,7 +30,7 @@ SampleLimits limits() {
 msg::AgentReply reply() {
   msg::AgentReply r;
   r.tick(7);
-  r.side(1);
+  r.side(msg::SIDE_R);
   r.index(3);
   r.voltage_V(12.0);
   r.current_A(0.8);
@@ -42,7 +42,7 @@ msg::AgentReply reply() {
 msg::GroupStatus status() {
   msg::GroupStatus g;
   g.tick(7);
-  g.side(0);
+  g.side(msg::SIDE_L);
   g.active(std::vector<uint8_t>{1, 0, 1, 0});
   return g;
 }
@@ -50,8 +50,7 @@ msg::GroupStatus status() {
 msg::CentralCommand command() {
   msg::CentralCommand c;
   c.tick(7);
-  c.phidot_ref_L(40.0);
-  c.phidot_ref_R(-40.0);
+  c.phidot_ref({40.0, -40.0});
   return c;
 }
 
@@ -77,7 +76,7 @@ TEST(PlantValidation, AgentReplyNotFiniteIsMalformed) {
 
 TEST(PlantValidation, AgentReplyOutOfRangeIsMalformed) {
   auto r = reply();
-  r.side(2);
+  r.side(static_cast<msg::Side>(2));
   EXPECT_FALSE(valid(r, limits()));
   r = reply();
   r.index(4);  // == per side
@@ -85,7 +84,7 @@ TEST(PlantValidation, AgentReplyOutOfRangeIsMalformed) {
   r.index(65535);
   EXPECT_FALSE(valid(r, limits()));
   r = reply();
-  r.state(static_cast<uint8_t>(msg::AGENT_STOPPING + 1));
+  r.state(static_cast<msg::AgentState>(msg::AGENT_STOPPING + 1));
   EXPECT_FALSE(valid(r, limits()));
   r = reply();
   r.voltage_V(-1e-6);
@@ -98,7 +97,7 @@ TEST(PlantValidation, AgentVoltageIsBoundedByItsSidesBattery) {
   EXPECT_TRUE(valid(r, limits()));
   r.voltage_V(22.0 + 1e-6);
   EXPECT_FALSE(valid(r, limits()));
-  r.side(0);  // left side: 23.4 V
+  r.side(msg::SIDE_L);  // left side: 23.4 V
   EXPECT_TRUE(valid(r, limits()));
   r.voltage_V(23.5);
   EXPECT_FALSE(valid(r, limits()));
@@ -106,11 +105,11 @@ TEST(PlantValidation, AgentVoltageIsBoundedByItsSidesBattery) {
 
 TEST(PlantValidation, DrivingStates) {
   auto r = reply();
-  for (uint8_t s : {msg::AGENT_ACTIVE, msg::AGENT_HOLDING, msg::AGENT_STOPPING}) {
+  for (msg::AgentState s : {msg::AGENT_ACTIVE, msg::AGENT_HOLDING, msg::AGENT_STOPPING}) {
     r.state(s);
     EXPECT_TRUE(plant::drives(r)) << int(s);
   }
-  for (uint8_t s : {msg::AGENT_IDLE, msg::AGENT_COASTING}) {
+  for (msg::AgentState s : {msg::AGENT_IDLE, msg::AGENT_COASTING}) {
     r.state(s);
     EXPECT_FALSE(plant::drives(r)) << int(s);
   }
@@ -118,7 +117,7 @@ TEST(PlantValidation, DrivingStates) {
 
 TEST(PlantValidation, GroupStatusSideAndMaskLength) {
   auto g = status();
-  g.side(2);
+  g.side(static_cast<msg::Side>(2));
   EXPECT_FALSE(valid(g, limits()));
   g = status();
   g.active(std::vector<uint8_t>{1, 0, 1});
@@ -131,15 +130,14 @@ TEST(PlantValidation, GroupStatusSideAndMaskLength) {
 
 TEST(PlantValidation, CentralReferenceFiniteAndBounded) {
   for (double bad : {kNaN, kInf, -kInf, 1e4, -1e4}) {
-    auto c = command();
-    c.phidot_ref_L(bad);
-    EXPECT_FALSE(valid(c, limits())) << bad;
-    c = command();
-    c.phidot_ref_R(bad);
-    EXPECT_FALSE(valid(c, limits())) << bad;
+    for (int s = 0; s < 2; ++s) {
+      auto c = command();
+      c.phidot_ref()[s] = bad;
+      EXPECT_FALSE(valid(c, limits())) << bad << " on side " << s;
+    }
   }
   auto c = command();
-  c.phidot_ref_L(9999.0);
+  c.phidot_ref()[msg::SIDE_L] = 9999.0;
   EXPECT_TRUE(valid(c, limits()));
 }
 
