@@ -1,0 +1,139 @@
+#include <algorithm>
+#include <fstream>
+#include <thread>
+
+#include "plant/plant_loop.hpp"
+
+namespace maptr::plant {
+
+void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
+  for (auto& [r, h] : replies_.drain()) {
+    const Verdict v = check(r, lim, k);
+    if (v != Verdict::kAccepted) {
+      ++rejected_;
+      if (v == Verdict::kMalformed)
+        log_.warn("rejected a malformed agent reply (side {}, index {}, V {})", r.side(), r.index(),
+                  r.voltage_V());
+      continue;
+    }
+    if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
+    membership_.on_answer({Role::kAgent, static_cast<int>(r.side()), r.index()}, writer_id(h));
+    cmd_.applied[r.side()][r.index()] = {true, drives(r), r.voltage_V(), r.current_A(), r.efficiency()};
+  }
+}
+
+void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
+  for (auto& [g, h] : groups_.drain()) {
+    if (check(g, lim, k) != Verdict::kAccepted) {
+      ++rejected_;
+      continue;
+    }
+    const int s = g.side();
+    membership_.on_answer({Role::kGroup, s, 0}, writer_id(h));
+    cmd_.mask[s] = g.active();
+    for (int j = 0; j < per_side_; ++j)
+      if (!membership_.at({Role::kAgent, s, j}).live)
+        cmd_.mask[s][j] = 0;  // never trust a dead agent's assignment
+    cmd_.group_stamp[s] = k;
+  }
+}
+
+void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
+  for (auto& [c, h] : centrals_.drain()) {
+    if (check(c, lim, k) != Verdict::kAccepted) {
+      ++rejected_;
+      continue;
+    }
+    membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));
+    for (int s = 0; s < 2; ++s) {
+      cmd_.ref[s] = c.phidot_ref()[s];
+      cmd_.relay[s] = c.relay_count_for()[s];
+    }
+    cmd_.central_stamp = k;
+  }
+}
+
+bool PlantLoop::collect() {
+  const long long k = core_.tick();
+  membership_.begin_tick();
+  for (auto& side : cmd_.applied)
+    for (auto& a : side) a = sim::AgentApplied{};
+  times_.start = Clock::now();
+  times_.first_reply = Clock::time_point{};
+  barrier_.start(now_s());
+  const SampleLimits lim = limits();
+  for (;;) {
+    // Membership first, then the samples.
+    apply_launcher_events();
+    apply_liveliness();
+    take_replies(k, lim);
+    log_membership();
+    take_groups(k, lim);
+    take_centrals(k, lim);
+    log_membership();
+    if (Barrier::complete(membership_) || stop_.load()) break;
+    // A restarted member may have matched the tick writer after tick k went out: send it again
+    // (unchanged; followers that have it ignore the copy).
+    if (barrier_.resend_due(membership_, now_s())) w_tick_->write(&sent_);
+    if (barrier_.deadline_passed(now_s())) {
+      declared_dead_ += membership_.on_deadline();
+      log_membership();
+      continue;
+    }
+    wait(c_.poll);
+  }
+  times_.complete = Clock::now();
+  return !stop_.load();
+}
+
+void PlantLoop::integrate() {
+  // Row k is written before the integration, so that a run whose integration fails keeps it.
+  files_->write(core_.hold(cmd_.applied[0], cmd_.applied[1], cmd_.ref[0], cmd_.ref[1],
+                           membership_.live_count(0), membership_.live_count(1)));
+  core_.integrate();
+  times_.done = Clock::now();
+  const auto& t = times_;
+  const float first = t.first_reply != Clock::time_point{} ? us(t.start, t.first_reply) : -1.0f;
+  timing_.add(us(t.publish, t.start), first, us(t.start, t.complete), us(t.complete, t.done),
+              us(t.publish, t.done));
+}
+
+void PlantLoop::pace() {
+  if (!sc_.realtime) return;
+  const auto due =
+      wall0_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(core_.t()));
+  if (Clock::now() > due)
+    ++missed_deadlines_;
+  else
+    std::this_thread::sleep_until(due);
+}
+
+int PlantLoop::report(bool stopped) {
+  const double wall = std::chrono::duration<double>(Clock::now() - wall0_).count();
+  RunEnd e;
+  e.stopped = stopped;
+  for (int s = 0; s < 2; ++s) e.live_agents[s] = membership_.live_count(s);
+  e.reached_reference = core_.reached_reference();
+  e.speed_lost = core_.speed_lost();
+  e.ref_speed_mps = 0.5 * (cmd_.ref[0] + cmd_.ref[1]) * sc_.robot.wheel_radius_m;
+  e.speed_mps = core_.state()[model::kVx];
+  ReportInputs in;
+  in.status = run_status(e, c_.degraded_band_pct);
+  in.end_reason = end_reason_;
+  in.tick_hz = sc_.tick_hz;
+  in.loop_wall_s = wall;
+  in.live_agents[0] = e.live_agents[0];
+  in.live_agents[1] = e.live_agents[1];
+  in.rejected_samples = rejected_;
+  in.missed_deadlines = missed_deadlines_;
+  in.declared_dead_by_deadline = declared_dead_;
+  in.tick_timing_us = timing_.json();
+  std::ofstream(run_dir_ + "/plant.json") << plant_report(core_, in, membership_.records()).dump(2) << "\n";
+  log_.info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", in.status, core_.tick(), core_.t(),
+            wall);
+  // Give the last Tick time to reach every reader before the participant goes away.
+  std::this_thread::sleep_for(c_.linger);
+  return aborted(in.status) ? 1 : 0;
+}
+
+}  // namespace maptr::plant

@@ -1,0 +1,223 @@
+#include "plant/plant_loop.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <thread>
+
+namespace maptr::plant {
+
+namespace {
+
+double wall_ms_now() {
+  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+int count(const std::vector<uint8_t>& m) {
+  int n = 0;
+  for (auto b : m) n += b ? 1 : 0;
+  return n;
+}
+
+/// What a MembershipEvent says, for the DDS-free membership (kOther: a value this build does not
+/// know).
+LauncherEvent launcher_event(msg::MemberEvent kind) {
+  switch (kind) {
+    case msg::MEMBER_DIED:
+      return LauncherEvent::kDied;
+    case msg::MEMBER_STARTED:
+      return LauncherEvent::kStarted;
+  }
+  return LauncherEvent::kOther;
+}
+
+sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConfig& c) {
+  sim::PlantCoreConfig pc;
+  pc.robot = sc.robot;
+  pc.dt_s = sc.dt();
+  pc.trace_every = sc.trace_every;
+  pc.initial_discharge_mAh = sc.initial_discharge_mAh;
+  pc.stop_below_speed_pct = sc.stop_below_speed_pct;
+  pc.speed_lost_hold_s = c.speed_lost_hold_s;
+  pc.reached_band_pct = c.reached_band_pct;
+  return pc;
+}
+
+std::vector<double> fault_times(const std::vector<config::FaultSpec>& faults) {
+  std::vector<double> t;
+  for (const auto& f : faults) t.push_back(f.at_s);
+  return t;
+}
+
+/// What the members last commanded: each agent's applied voltage over the current tick, the
+
+}  // namespace
+
+PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const PlantNodeConfig& c)
+    : sc_(args.scenario),
+      run_dir_(args.run_dir),
+      log_(log),
+      c_(c),
+      per_side_(args.scenario.robot.per_side()),
+      stop_(comm::stop_flag()),
+      p_("plant", args.dds),
+      core_(core_config(args.scenario, c)),
+      membership_(per_side_, wall_ms_now),
+      gate_(fault_times(args.scenario.faults), c.gate_timeout_s),
+      barrier_(c.deadline_s(args.scenario.robot.agents), c.resend_s) {
+  w_tick_ =
+      p_.writer(p_.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match_);
+  p_.reader(p_.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &replies_);
+  p_.reader(p_.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), comm::Profile::kStream, &groups_);
+  p_.reader(p_.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), comm::Profile::kStream,
+            &centrals_);
+  p_.reader(p_.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched,
+            &members_);
+  p_.reader(p_.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched, &controls_);
+  w_ready_ = p_.writer(p_.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched);
+  w_gate_ = p_.writer(p_.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched);
+  for (int s = 0; s < 2; ++s) {
+    cmd_.applied[s].assign(per_side_, sim::AgentApplied{});
+    cmd_.mask[s].assign(per_side_, 0);
+  }
+}
+
+void PlantLoop::wait(std::chrono::milliseconds at_most) {
+  seen_ = signal_.wait_until(seen_, Clock::now() + at_most);
+}
+
+// Every endpoint of the fleet matched, then tell the launcher; true once it says start.
+bool PlantLoop::discover() {
+  const int n_agents = sc_.robot.agents;
+  const auto t_launch = Clock::now();
+  seen_ = signal_.count();
+  bool announced = false, started = false;
+  while (!stop_.load() && !started) {
+    wait(c_.discovery_poll);
+    if (!announced && replies_.matched() >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
+        tick_match_.matched() >= n_agents + 4) {  // agents, 2 groups, central and the launcher
+      comm::announce_ready(w_ready_, "plant", msg::NODE_PLANT);
+      announced = true;
+      log_.info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,
+                std::chrono::duration<double>(Clock::now() - t_launch).count());
+    }
+    for (auto& [c, h] : controls_.drain())
+      if (c.command() == msg::CONTROL_START) started = true;
+  }
+  return started;
+}
+
+void PlantLoop::open_records() {
+  files_ = open_csv_run_files(run_dir_ + "/trace.csv", run_dir_ + "/assignments.csv");
+  wall0_ = Clock::now();
+}
+
+bool PlantLoop::last_tick() {
+  membership_.set_time(core_.t());
+  if (core_.speed_lost() && end_reason_ == "duration reached")
+    end_reason_ = end_reason(true, sc_.stop_below_speed_pct, c_.speed_lost_hold_s, core_.t());
+  return core_.tick() >= sc_.ticks() || core_.speed_lost();
+}
+
+void PlantLoop::pass_gate() {
+  if (!gate_.due(core_.t())) return;
+  const auto t0 = Clock::now();
+  wait_gate(core_.tick());
+  wall0_ += Clock::now() - t0;  // a pause for fault injection is not a missed real-time deadline
+}
+
+// Holds tick k until the launcher has applied the faults due at t_k (see FaultGate).
+void PlantLoop::wait_gate(long long k) {
+  msg::FaultGate g;
+  g.tick(static_cast<uint64_t>(k));
+  g.t(core_.t());
+  w_gate_->write(&g);
+  gate_.hold(static_cast<uint64_t>(k));
+  const double t0 = now_s();
+  while (!stop_.load() && !gate_.released(membership_.launcher_seq())) {
+    for (auto& [c, h] : controls_.drain())
+      if (c.command() == msg::CONTROL_GATE_OPEN) gate_.on_open(c.tick(), c.member_seq());
+    apply_launcher_events();
+    if (gate_.timed_out(now_s() - t0)) {
+      log_.error("the launcher did not answer the fault gate of tick {} within {} s: going on", k,
+                 gate_.timeout_s());
+      break;
+    }
+    wait(c_.poll);
+  }
+}
+
+void PlantLoop::publish(msg::RunState run_state) {
+  times_.publish = Clock::now();
+  msg::PlantTick& t = sent_;
+  t.tick(static_cast<uint64_t>(core_.tick()));
+  t.t(core_.t());
+  t.dt(sc_.dt());
+  const auto& x = core_.state();
+  t.x(x[model::kX]);
+  t.y(x[model::kY]);
+  t.theta(x[model::kTheta]);
+  t.v_x(x[model::kVx]);
+  t.w(x[model::kW]);
+  t.energy_J(x[model::kEnergyL] + x[model::kEnergyR]);
+  t.distance_m(x[model::kDistance]);
+  t.central_stamp(cmd_.central_stamp);
+  const int charge[2] = {model::kChargeL, model::kChargeR};
+  for (int s = 0; s < 2; ++s) {
+    msg::SideTick& side = t.sides()[s];
+    side.phidot(core_.phidot(s));
+    side.battery_V(core_.battery_V(s));
+    side.V_active(core_.active_voltage(s));
+    side.discharge_mAh(x[charge[s]]);
+    side.phidot_ref(cmd_.ref[s]);
+    side.active(cmd_.mask[s]);
+    side.live(membership_.live_mask(s));
+    side.group_stamp(cmd_.group_stamp[s]);
+    side.n_active(static_cast<uint16_t>(count(cmd_.mask[s])));
+    side.relay_count(static_cast<uint16_t>(cmd_.relay[s]));
+  }
+  t.run_state(run_state);
+  w_tick_->write(&t);
+}
+
+void PlantLoop::log_membership() {
+  const auto& r = membership_.records();
+  for (; logged_records_ < r.size(); ++logged_records_) {
+    const auto& e = r[logged_records_];
+    if (e.event == "rejoined")
+      log_.info("{} answers again at t={:.2f} s: re-admitted", e.name, e.t_s);
+    else
+      log_.warn("{} {} at t={:.2f} s", e.name, e.event, e.t_s);
+  }
+}
+
+// Launcher events: a death ends the wait for that process; a restarted process that is
+// matched and ready is waited for from the next tick on (its old writer no longer counts).
+void PlantLoop::apply_launcher_events() {
+  for (auto& [e, h] : members_.drain()) {
+    membership_.on_launcher(e.seq(), launcher_event(e.kind()), e.name());
+  }
+  log_membership();
+}
+
+void PlantLoop::apply_liveliness() {
+  for (const auto& ev : replies_.drain_liveliness())
+    if (!ev.alive) membership_.on_liveliness_lost(Role::kAgent, writer_id(ev.writer));
+  for (const auto& ev : groups_.drain_liveliness())
+    if (!ev.alive) membership_.on_liveliness_lost(Role::kGroup, writer_id(ev.writer));
+  for (const auto& ev : centrals_.drain_liveliness())
+    if (!ev.alive) membership_.on_liveliness_lost(Role::kCentral, writer_id(ev.writer));
+  log_membership();
+}
+
+SampleLimits PlantLoop::limits() const {
+  SampleLimits l;
+  l.per_side = per_side_;
+  l.battery_V[0] = core_.battery_V(0);
+  l.battery_V[1] = core_.battery_V(1);
+  l.voltage_tolerance_V = c_.voltage_tolerance_V;
+  l.ref_bound_radps = c_.central_ref_bound_radps;
+  return l;
+}
+
+}  // namespace maptr::plant

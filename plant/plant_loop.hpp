@@ -1,0 +1,126 @@
+#pragma once
+// The plant's lock-step loop: its DDS endpoints and the protocol objects they feed (membership,
+// barrier, validation, fault gate, report). PlantNode::run() drives it: discover, then per tick
+// gate, publish, collect, integrate, pace; then report. Set-up, discovery, gates, publishing and
+// membership are in plant_loop.cpp; taking samples, integrating, pacing and the report in
+// plant_intake.cpp.
+#include <spdlog/logger.h>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "comm/process.hpp"
+#include "idl/maptrPubSubTypes.h"
+#include "plant/barrier.hpp"
+#include "plant/fault_gate.hpp"
+#include "plant/membership.hpp"
+#include "plant/plant_config.hpp"
+#include "plant/report.hpp"
+#include "plant/run_files.hpp"
+#include "plant/validation.hpp"
+#include "sim/plant_core.hpp"
+
+namespace maptr::plant {
+
+using Clock = std::chrono::steady_clock;
+using Handle = eprosima::fastrtps::rtps::InstanceHandle_t;
+
+/// The membership's DDS-free id of a writer (its GUID bytes).
+inline WriterId writer_id(const Handle& h) {
+  WriterId w;
+  const eprosima::fastrtps::rtps::octet* p = h.value;
+  std::copy(p, p + w.bytes.size(), w.bytes.begin());
+  w.set = h.value.has_been_set();
+  return w;
+}
+
+/// Microseconds from a to b.
+inline float us(Clock::time_point a, Clock::time_point b) {
+  return static_cast<float>(std::chrono::duration<double, std::micro>(b - a).count());
+}
+
+/// groups' assignments and central's references (carried in the next Tick).
+struct Commands {
+  std::vector<sim::AgentApplied> applied[2];
+  std::vector<uint8_t> mask[2];
+  long long group_stamp[2] = {-1, -1};
+  long long central_stamp = -1;
+  double ref[2] = {0.0, 0.0};  ///< rad/s, wheel references per side
+  int relay[2] = {0, 0};       ///< the other side's active count, relayed to each side
+};
+
+/// Wall-clock instants of one lock-step tick.
+struct TickTimes {
+  Clock::time_point publish, start, first_reply, complete, done;
+};
+
+/// The plant's DDS endpoints and the protocol objects they feed.
+class PlantLoop {
+ public:
+  PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const PlantNodeConfig& c);
+
+  bool discover();
+  void open_records();
+  /// True when the current tick is the last one to publish (duration reached or speed lost);
+  /// stamps the membership records with its time and notes why the run ends.
+  bool last_tick();
+  void pass_gate();
+  void publish(msg::RunState run_state);
+  /// Waits until tick k is complete; false on the stop signal.
+  bool collect();
+  void integrate();
+  void pace();
+  int report(bool stopped);
+
+ private:
+  void wait_gate(long long k);
+  void apply_launcher_events();
+  void apply_liveliness();
+  void take_replies(long long k, const SampleLimits& lim);
+  void take_groups(long long k, const SampleLimits& lim);
+  void take_centrals(long long k, const SampleLimits& lim);
+  SampleLimits limits() const;
+  void log_membership();
+  void wait(std::chrono::milliseconds at_most);
+  double now_s() const { return std::chrono::duration<double>(Clock::now() - origin_).count(); }
+
+  const config::Scenario& sc_;
+  const std::string run_dir_;
+  spdlog::logger& log_;
+  const PlantNodeConfig c_;
+  const int per_side_;
+  std::atomic<bool>& stop_;
+  const Clock::time_point origin_ = Clock::now();
+
+  comm::Signal signal_;
+  comm::Inbox<msg::AgentReply> replies_{signal_};
+  comm::Inbox<msg::GroupStatus> groups_{signal_};
+  comm::Inbox<msg::CentralCommand> centrals_{signal_};
+  comm::Inbox<msg::MembershipEvent> members_{signal_};
+  comm::Inbox<msg::Control> controls_{signal_};
+  comm::MatchCounter tick_match_{&signal_};
+  comm::Participant p_;
+  eprosima::fastdds::dds::DataWriter* w_tick_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* w_ready_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* w_gate_ = nullptr;
+  uint64_t seen_ = 0;
+
+  sim::PlantCore core_;
+  std::unique_ptr<RunFiles> files_;
+  Membership membership_;
+  std::size_t logged_records_ = 0;
+  FaultGate gate_;
+  Barrier barrier_;
+  Commands cmd_;
+  msg::PlantTick sent_;  ///< the tick last published (resent unchanged to a restarted member)
+  TickTimes times_;
+  TickTiming timing_;
+  Clock::time_point wall0_;
+  std::string end_reason_ = "duration reached";
+  uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;
+};
+
+}  // namespace maptr::plant
