@@ -16,15 +16,13 @@
 #include <vector>
 
 #include "control/level2/solver.hpp"
+#include "control/level2/status.hpp"
 #include "control/level3/ledger.hpp"
 #include "model/params.hpp"
 
 namespace maptr::control {
 
 enum class GroupMode { kAll, kEnergyConscious };
-
-/// Level-2 outcome reported with a decision (same values as the msg::L2_* constants).
-enum Level2Status : uint8_t { kL2None = 0, kL2Ok = 1, kL2Infeasible = 2, kL2Failed = 3 };
 
 struct GroupConfig {
   model::RobotParams robot;

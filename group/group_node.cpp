@@ -1,10 +1,9 @@
 #include "group/group_node.hpp"
 
-#include <fstream>
-
 #include "comm/follower.hpp"
 #include "comm/side.hpp"
 #include "config/scenario.hpp"
+#include "records/level2_log.hpp"
 
 namespace maptr::group {
 
@@ -53,6 +52,21 @@ control::GroupInput group_input(const msg::PlantTick& t, int side) {
   in.n_other = own.relay_count();
   return in;
 }
+
+/// The Level-2 log record of a decision taken at this tick.
+records::Level2Record level2_record(const control::GroupInput& in, const control::GroupDecision& d) {
+  records::Level2Record r;
+  r.t_s = in.t;
+  r.n_live = d.n_live;
+  r.n_other = in.n_other;
+  r.status = d.level2_status;
+  r.relaxed = d.level2_relaxed;
+  r.ipopt_n_active = d.ipopt_n_active;
+  r.oracle_n_active = d.oracle_n_active;
+  r.n_target = d.n_active;
+  r.solve_ms = d.solve_time_ms;
+  return r;
+}
 }  // namespace
 
 GroupNode::GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<spdlog::logger> log)
@@ -70,10 +84,7 @@ int GroupNode::run() {
                core_.ledger().reallocations);
   // Every Level-2 decision, for the solve-time and oracle figures (appended: a restarted
   // controller continues the file).
-  const std::string l2_path = args_.run_dir + "/level2-" + (side_ == 0 ? "L" : "R") + ".csv";
-  const bool l2_new = !std::ifstream(l2_path).good();
-  std::ofstream l2(l2_path, std::ios::app);
-  if (l2_new) l2 << "t_s,n_live,n_other,status,relaxed,ipopt_n_active,oracle_n_active,n_target,solve_ms\n";
+  records::Level2LogWriter l2(records::level2_log_path(args_.run_dir, side_));
   bool infeasible = false;
   const int code = follower.run([&](const msg::PlantTick& t) {
     const control::GroupInput in = group_input(t, side_);
@@ -87,11 +98,7 @@ int GroupNode::run() {
       else
         log_->info("Level 2 feasible again at t={:.2f} s", in.t);
     }
-    if (d.level2_ran && l2)
-      l2 << in.t << ',' << d.n_live << ',' << in.n_other << ',' << static_cast<int>(d.level2_status) << ','
-         << d.level2_relaxed << ',' << d.ipopt_n_active << ',' << d.oracle_n_active << ',' << d.n_active
-         << ',' << d.solve_time_ms << '\n'
-         << std::flush;
+    if (d.level2_ran && l2) l2.write(level2_record(in, d));
     msg::GroupStatus st;
     st.tick(t.tick());
     st.side(comm::to_msg_side(side_));

@@ -14,7 +14,9 @@ WheelRates to_wheel_rates(const BodyVelocity& b, double a, double r) {
 }
 
 BodyVelocity body_from_rates(const WheelRates& s, double a, double r) {
-  return {0.5 * (s.phidot_L + s.phidot_R) * r, r * (s.phidot_R - s.phidot_L) / a};
+  return {speed_from_rates(s, r), r * (s.phidot_R - s.phidot_L) / a};
 }
+
+double speed_from_rates(const WheelRates& s, double r) { return 0.5 * (s.phidot_L + s.phidot_R) * r; }
 
 }  // namespace maptr::model

@@ -28,5 +28,8 @@ WheelRates to_wheel_rates(const BodyVelocity& b, double track_m, double radius_m
 /// Body velocity the wheel angular speeds give (e.g. the body reference from the wheel
 /// references): v_x = (phidot_L + phidot_R) r / 2, w = r (phidot_R - phidot_L) / a.
 BodyVelocity body_from_rates(const WheelRates& s, double track_m, double radius_m);
+/// The forward part of body_from_rates, which needs no track: v_x = (phidot_L + phidot_R) r / 2
+/// (e.g. the reference speed from the two sides' wheel-speed references).
+double speed_from_rates(const WheelRates& s, double radius_m);
 
 }  // namespace maptr::model

@@ -3,6 +3,8 @@
 // deadline, the bounds a sample must respect, the fault gate's waits and the run status bands.
 #include <chrono>
 
+#include "sim/speed_band.hpp"
+
 namespace maptr::plant {
 
 struct PlantNodeConfig {
@@ -17,7 +19,7 @@ struct PlantNodeConfig {
   /// Final speed error above which a run that reached its reference is degraded, %.
   double degraded_band_pct = 5.0;
   /// Tracking error under which the reference counts as reached the first time, %.
-  double reached_band_pct = 2.0;
+  double reached_band_pct = sim::kSpeedBandPct;
   /// How long the speed must stay below its reference (stop_below_speed_pct) to end the run, s.
   double speed_lost_hold_s = 5.0;
   /// Wall time the plant waits for the launcher at a fault gate before going on, s.

@@ -2,6 +2,7 @@
 #include <fstream>
 #include <thread>
 
+#include "model/kinematics.hpp"
 #include "plant/plant_loop.hpp"
 
 namespace maptr::plant {
@@ -115,7 +116,7 @@ int PlantLoop::report(bool stopped) {
   for (int s = 0; s < 2; ++s) e.live_agents[s] = membership_.live_count(s);
   e.reached_reference = core_.reached_reference();
   e.speed_lost = core_.speed_lost();
-  e.ref_speed_mps = 0.5 * (cmd_.ref[0] + cmd_.ref[1]) * sc_.robot.wheel_radius_m;
+  e.ref_speed_mps = model::speed_from_rates({cmd_.ref[0], cmd_.ref[1]}, sc_.robot.wheel_radius_m);
   e.speed_mps = core_.state()[model::kVx];
   ReportInputs in;
   in.status = run_status(e, c_.degraded_band_pct);

@@ -1,69 +1,75 @@
 #include "plant/run_files.hpp"
 
-#include <cstdio>
-#include <stdexcept>
+#include <optional>
+
+#include "records/assignments.hpp"
+#include "records/trace.hpp"
 
 namespace maptr::plant {
 
 namespace {
 
+/// The trace record of the core's row k (counts become whole doubles; energy is both sides').
+records::TraceRow to_record(const sim::TraceRow& r) {
+  const model::State& x = r.x;
+  records::TraceRow o;
+  o.tick = static_cast<double>(r.tick);
+  o.t_s = r.t_s;
+  o.x_m = x[model::kX];
+  o.y_m = x[model::kY];
+  o.theta_rad = x[model::kTheta];
+  o.v_x_mps = x[model::kVx];
+  o.w_radps = x[model::kW];
+  o.phidot_L_radps = r.phidot_radps[0];
+  o.phidot_R_radps = r.phidot_radps[1];
+  o.ref_L_radps = r.ref_radps[0];
+  o.ref_R_radps = r.ref_radps[1];
+  o.V_L_mean_V = r.voltage_mean_V[0];
+  o.V_R_mean_V = r.voltage_mean_V[1];
+  o.I_L_A = r.current_A[0];
+  o.I_R_A = r.current_A[1];
+  o.eff_L = r.efficiency_mean[0];
+  o.eff_R = r.efficiency_mean[1];
+  o.battery_V_L = r.battery_V[0];
+  o.battery_V_R = r.battery_V[1];
+  o.discharge_L_mAh = x[model::kChargeL];
+  o.discharge_R_mAh = x[model::kChargeR];
+  o.n_active_L = r.n_active[0];
+  o.n_active_R = r.n_active[1];
+  o.n_live_L = r.n_live[0];
+  o.n_live_R = r.n_live[1];
+  o.energy_J = x[model::kEnergyL] + x[model::kEnergyR];
+  o.distance_m = x[model::kDistance];
+  return o;
+}
+
+/// The assignment record of a change: side 'L'/'R', the driving flags as a '0'/'1' mask.
+records::AssignmentRecord to_record(const sim::AssignmentChange& a) {
+  records::AssignmentRecord o;
+  o.t_s = a.t_s;
+  o.side = a.side == 0 ? 'L' : 'R';
+  o.driving.assign(a.driving.size(), '0');
+  for (std::size_t j = 0; j < a.driving.size(); ++j)
+    if (a.driving[j]) o.driving[j] = '1';
+  return o;
+}
+
 class CsvRunFiles : public RunFiles {
  public:
   CsvRunFiles(const std::string& trace_path, const std::string& assignments_path) {
-    if (!assignments_path.empty()) {
-      assignments_ = std::fopen(assignments_path.c_str(), "w");
-      if (!assignments_) throw std::runtime_error("cannot write " + assignments_path);
-      std::fprintf(assignments_, "t_s,side,driving\n");
-    }
-    trace_ = std::fopen(trace_path.c_str(), "w");
-    if (!trace_) {
-      if (assignments_) std::fclose(assignments_);
-      throw std::runtime_error("cannot write the trace " + trace_path);
-    }
-    std::fprintf(
-        trace_,
-        "tick,t_s,x_m,y_m,theta_rad,v_x_mps,w_radps,phidot_L_radps,phidot_R_radps,ref_L_radps,ref_R_radps,"
-        "V_L_mean_V,V_R_mean_V,I_L_A,I_R_A,eff_L,eff_R,battery_V_L,battery_V_R,discharge_L_mAh,"
-        "discharge_R_mAh,n_active_L,n_active_R,n_live_L,n_live_R,energy_J,distance_m\n");
-    std::fflush(trace_);
+    if (!assignments_path.empty()) assignments_.emplace(assignments_path);
+    trace_.emplace(trace_path);
   }
-  ~CsvRunFiles() override {
-    std::fclose(trace_);
-    if (assignments_) std::fclose(assignments_);
-  }
-  CsvRunFiles(const CsvRunFiles&) = delete;
-  CsvRunFiles& operator=(const CsvRunFiles&) = delete;
 
   void write(const sim::TickRecord& rec) override {
-    if (rec.row) write_row(*rec.row);
+    if (rec.row) trace_->write(to_record(*rec.row));
     if (assignments_)
-      for (const auto& a : rec.assignments) write_assignment(a);
+      for (const auto& a : rec.assignments) assignments_->write(to_record(a));
   }
 
  private:
-  void write_row(const sim::TraceRow& r) {
-    const model::State& x = r.x;
-    std::fprintf(
-        trace_,
-        "%lld,%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%.9g,%.9g,"
-        "%.9g,%.9g,%d,%d,%d,%d,%.9g,%.9g\n",
-        r.tick, r.t_s, x[model::kX], x[model::kY], x[model::kTheta], x[model::kVx], x[model::kW],
-        r.phidot_radps[0], r.phidot_radps[1], r.ref_radps[0], r.ref_radps[1], r.voltage_mean_V[0],
-        r.voltage_mean_V[1], r.current_A[0], r.current_A[1], r.efficiency_mean[0], r.efficiency_mean[1],
-        r.battery_V[0], r.battery_V[1], x[model::kChargeL], x[model::kChargeR], r.n_active[0], r.n_active[1],
-        r.n_live[0], r.n_live[1], x[model::kEnergyL] + x[model::kEnergyR], x[model::kDistance]);
-    std::fflush(trace_);
-  }
-  void write_assignment(const sim::AssignmentChange& a) {
-    std::string mask(a.driving.size(), '0');
-    for (std::size_t j = 0; j < a.driving.size(); ++j)
-      if (a.driving[j]) mask[j] = '1';
-    std::fprintf(assignments_, "%.6f,%c,%s\n", a.t_s, a.side == 0 ? 'L' : 'R', mask.c_str());
-    std::fflush(assignments_);
-  }
-
-  std::FILE* trace_ = nullptr;
-  std::FILE* assignments_ = nullptr;
+  std::optional<records::AssignmentsWriter> assignments_;
+  std::optional<records::TraceWriter> trace_;
 };
 
 }  // namespace

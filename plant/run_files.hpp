@@ -16,9 +16,9 @@ class RunFiles {
   virtual void write(const sim::TickRecord& rec) = 0;
 };
 
-/// The CSV trace at trace_path and, when assignments_path is not empty, the assignment rows
-/// (t_s,side,driving) at assignments_path. Throws std::runtime_error when a file cannot be
-/// opened.
+/// The trace (records/trace.hpp) at trace_path and, when assignments_path is not empty, the
+/// assignment rows (records/assignments.hpp) at assignments_path. Throws records::RecordError
+/// (a std::runtime_error) when a file cannot be opened.
 std::unique_ptr<RunFiles> open_csv_run_files(const std::string& trace_path,
                                              const std::string& assignments_path);
 

@@ -1,10 +1,11 @@
 #pragma once
 // level2-L.csv / level2-R.csv: every Level-2 decision of one group controller (appended: a
-// restarted controller continues its file). Status codes are the msg::L2_* values.
+// restarted controller continues its file). Status codes are control::Level2Status values.
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "control/level2/status.hpp"
 #include "records/csv.hpp"
 
 namespace maptr::records {
@@ -14,7 +15,7 @@ struct Level2Record {
   double t_s = 0;               ///< simulated time of the decision, s
   double n_live = 0;            ///< live agents of the side
   double n_other = 0;           ///< active agents of the other side
-  double status = 0;            ///< msg::L2_* code
+  double status = 0;            ///< a control::Level2Status code
   double relaxed = 0;           ///< Ipopt's relaxed (continuous) optimum
   double ipopt_n_active = -1;   ///< the integer Ipopt's optimum led to
   double oracle_n_active = -1;  ///< the exhaustive search's choice, -1 when not checked

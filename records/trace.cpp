@@ -1,5 +1,7 @@
 #include "records/trace.hpp"
 
+#include "model/kinematics.hpp"
+
 namespace maptr::records {
 
 namespace {
@@ -18,6 +20,10 @@ std::vector<TraceRow> rows_of(const CsvFile& f) {
   return out;
 }
 }  // namespace
+
+double TraceRow::ref_speed_mps(double wheel_radius_m) const {
+  return model::speed_from_rates({ref_L_radps, ref_R_radps}, wheel_radius_m);
+}
 
 const std::vector<TraceColumn>& trace_columns() {
   static const std::vector<TraceColumn> cols = {

@@ -21,9 +21,7 @@ struct TraceRow {
   double energy_J = 0, distance_m = 0;
 
   /// Mean of the two sides' wheel-speed references times the wheel radius, m/s.
-  double ref_speed_mps(double wheel_radius_m) const {
-    return 0.5 * (ref_L_radps + ref_R_radps) * wheel_radius_m;
-  }
+  double ref_speed_mps(double wheel_radius_m) const;
 };
 
 /// A column of trace.csv and where its value lives in a TraceRow.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "model/battery.hpp"
+#include "model/kinematics.hpp"
 
 namespace maptr::sim {
 
@@ -21,9 +22,9 @@ double PlantCore::battery_V(int side) const {
 }
 
 double PlantCore::phidot(int side) const {
-  const double v = x_[model::kVx], w = x_[model::kW];
-  const double vs = side == 0 ? v - 0.5 * c_.robot.track_m * w : v + 0.5 * c_.robot.track_m * w;
-  return vs / c_.robot.wheel_radius_m;
+  const model::WheelRates q =
+      model::to_wheel_rates({x_[model::kVx], x_[model::kW]}, c_.robot.track_m, c_.robot.wheel_radius_m);
+  return side == 0 ? q.phidot_L : q.phidot_R;
 }
 
 double PlantCore::rms_speed_error_pct() const { return err_n_ ? std::sqrt(err_sq_sum_ / err_n_) : 0.0; }
@@ -110,7 +111,7 @@ TickRecord PlantCore::hold(const std::vector<AgentApplied>& left, const std::vec
   TickRecord rec;
   // Row k: state at t_k and what was applied over [t_k, t_k+1].
   if (tick_ % c_.trace_every == 0) rec.row = trace_row(sum, ref_L, ref_R, live_L, live_R);
-  const double ref_v = 0.5 * (ref_L + ref_R) * c_.robot.wheel_radius_m;
+  const double ref_v = model::body_from_rates({ref_L, ref_R}, c_.robot.track_m, c_.robot.wheel_radius_m).v_x;
   track_speed(ref_v);
   // Who drove over [t_k, t_k+1]: a record per change, and each agent's driving time.
   record_driving(rec.assignments);

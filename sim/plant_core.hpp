@@ -10,6 +10,7 @@
 
 #include "model/params.hpp"
 #include "sim/integrator.hpp"
+#include "sim/speed_band.hpp"
 
 namespace maptr::sim {
 
@@ -33,7 +34,7 @@ struct PlantCoreConfig {
   /// How long the shortfall must last to count as a lost speed, s.
   double speed_lost_hold_s = 5.0;
   /// Tracking error under which the reference counts as reached the first time, %.
-  double reached_band_pct = 2.0;
+  double reached_band_pct = kSpeedBandPct;
 };
 
 /// Trace row k: the state at t_k and what was applied over [t_k, t_k+1]. Per-side arrays are

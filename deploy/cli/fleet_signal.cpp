@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "deploy/launcher.hpp"
+#include "deploy/fleet/launcher.hpp"
 
 namespace maptr::deploy::cli {
 

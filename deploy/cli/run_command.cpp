@@ -8,8 +8,8 @@
 #include <iostream>
 
 #include "deploy/cli/paths.hpp"
-#include "deploy/faults.hpp"
-#include "deploy/launcher.hpp"
+#include "deploy/fleet/fault_schedule.hpp"
+#include "deploy/fleet/launcher.hpp"
 #include "model/params.hpp"
 
 namespace maptr::deploy::cli {

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "deploy/experiments/experiment_list.hpp"
+#include "sim/speed_band.hpp"
 
 namespace maptr::deploy {
 
@@ -129,7 +130,8 @@ std::string intro(const Conditions& c) {
        "for k = "
        "0, where it shows what Level 2 alone does to the speed); 'recovered' counts the kills after which "
        "the speed "
-       "came back within 2% of the reference.";
+       "came back within "
+    << sim::kSpeedBandPct << "% of the reference.";
   return o.str();
 }
 

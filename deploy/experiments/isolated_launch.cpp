@@ -14,7 +14,7 @@
 #include <fstream>
 #include <thread>
 
-#include "deploy/launcher.hpp"
+#include "deploy/fleet/launcher.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::deploy {

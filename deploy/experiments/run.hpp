@@ -8,17 +8,15 @@
 
 #include "config/scenario.hpp"
 #include "records/summary.hpp"
+#include "sim/speed_band.hpp"
 
 namespace maptr::deploy {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Relative band around the reference speed within which it counts as reached / held.
-inline constexpr double kSpeedBand = 0.02;
-
 /// Figures of a run's trace.csv (NaN when the trace does not give them).
 struct TraceFigures {
-  double t_reach_s = kNaN;      ///< first time within kSpeedBand of the reference speed
+  double t_reach_s = kNaN;      ///< first time within sim::kSpeedBandPct of the reference speed
   double v_end_mps = kNaN;      ///< mean speed over the last 10% of the run
   double ref_end_mps = kNaN;    ///< reference at the end
   double eff_cruise = kNaN;     ///< mean per-agent efficiency (mean of eff_L, eff_R), second half
@@ -45,7 +43,7 @@ struct Run {
   /// Level-2 figures over both sides: decisions, oracle checks and disagreements, and the mean
   /// of the sides' median Ipopt solve times.
   nlohmann::json level2() const;
-  /// The speed stayed within kSpeedBand of the reference at the end of the run.
+  /// The speed stayed within sim::kSpeedBandPct of the reference at the end of the run.
   bool speed_held() const;
 };
 

@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <map>
-#include <sstream>
+
+#include "records/trace.hpp"
 
 namespace maptr::deploy {
 
@@ -14,37 +13,20 @@ struct Row {
   double t, err_pct;
 };
 
-/// Trace columns the analysis reads.
-constexpr const char* kTime = "t_s";
-constexpr const char* kSpeed = "v_x_mps";
-constexpr const char* kRefL = "ref_L_radps";
-constexpr const char* kRefR = "ref_R_radps";
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  for (std::string f; std::getline(ss, f, ',');) out.push_back(f);
-  return out;
-}
-
-/// Speed error of every tick of the trace, %; none if a column is missing.
+/// Speed error of every row of the trace, %. None when the trace is missing or broken (a
+/// records::RecordError must not end the summary: the faults are then reported unanalysed).
 std::vector<Row> speed_errors(const std::string& path, double r) {
+  std::vector<records::TraceRow> trace;
+  try {
+    trace = records::read_trace(path);
+  } catch (const records::RecordError&) {
+    return {};
+  }
   std::vector<Row> rows;
-  std::ifstream in(path);
-  std::string line;
-  if (!std::getline(in, line)) return rows;
-  std::map<std::string, std::size_t> col;
-  const auto header = split(line);
-  for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
-  for (const char* name : {kTime, kSpeed, kRefL, kRefR})
-    if (!col.count(name)) return rows;
-  const std::size_t need = std::max({col[kTime], col[kSpeed], col[kRefL], col[kRefR]}) + 1;
-  while (std::getline(in, line)) {
-    const auto f = split(line);
-    if (f.size() < need) continue;
-    auto at = [&](const char* name) { return std::strtod(f[col[name]].c_str(), nullptr); };
-    const double ref = 0.5 * (at(kRefL) + at(kRefR)) * r;
-    rows.push_back({at(kTime), ref > 0.0 ? 100.0 * std::fabs(at(kSpeed) - ref) / ref : 0.0});
+  rows.reserve(trace.size());
+  for (const auto& x : trace) {
+    const double ref = x.ref_speed_mps(r);
+    rows.push_back({x.t_s, ref > 0.0 ? 100.0 * std::fabs(x.v_x_mps - ref) / ref : 0.0});
   }
   return rows;
 }

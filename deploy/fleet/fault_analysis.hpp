@@ -5,17 +5,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace maptr::deploy {
+#include "sim/speed_band.hpp"
 
-/// A fault is recovered once |v_x - v_ref| / v_ref stays within this band, % (v_ref the mean
-/// of the two wheel-speed references times the wheel radius).
-inline constexpr double kRecoveryBandPct = 2.0;
+namespace maptr::deploy {
 
 /// Fills in detected_s, detect_wall_ms, recovered_s and max_speed_error_pct of every entry of
 /// `failures` ({target, action, at_s, wall_ms}) from the plant's membership events
-/// ({name, event, t_s, wall_ms}) and the trace (speed and references per tick, columns found
-/// by their names in the header).
+/// ({name, event, t_s, wall_ms}) and the trace (records::read_trace). A fault is recovered once
+/// |v_x - v_ref| / v_ref stays within recovery_band_pct (v_ref the trace row's reference speed).
+/// Without a readable trace, recovered_s is null and max_speed_error_pct 0.
 void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, const std::string& trace_csv,
-                    double wheel_radius_m, double recovery_band_pct = kRecoveryBandPct);
+                    double wheel_radius_m, double recovery_band_pct = sim::kSpeedBandPct);
 
 }  // namespace maptr::deploy

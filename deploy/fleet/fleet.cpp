@@ -15,8 +15,6 @@
 
 namespace maptr::deploy::fleet {
 
-static_assert(kL2Ok == msg::L2_OK && kL2Infeasible == msg::L2_INFEASIBLE, "Level-2 status codes");
-
 namespace {
 /// Processes before the agents in launch order: plant, central, group-L, group-R.
 constexpr std::size_t kControllers = 4;

@@ -7,45 +7,25 @@
 #include <map>
 #include <sstream>
 
+#include "control/level2/status.hpp"
 #include "deploy/fleet/fault_analysis.hpp"
+#include "records/level2_log.hpp"
 
 namespace maptr::deploy::fleet {
 
 namespace {
 
-/// Level-2 log columns read here.
-constexpr const char* kL2Status = "status";
-constexpr const char* kL2Ipopt = "ipopt_n_active";
-constexpr const char* kL2Oracle = "oracle_n_active";
-constexpr const char* kL2SolveMs = "solve_ms";
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  for (std::string f; std::getline(ss, f, ',');) out.push_back(f);
-  return out;
-}
-
-nlohmann::json level2_side(std::ifstream& in) {
-  std::string line;
-  std::getline(in, line);
-  std::map<std::string, std::size_t> col;
-  const auto header = split(line);
-  for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+/// The figures of one side's Level-2 decisions.
+nlohmann::json level2_side(const std::vector<records::Level2Record>& log) {
   std::vector<double> ms;
   int checked = 0, differs = 0, infeasible = 0;
-  const bool has_all =
-      col.count(kL2Status) && col.count(kL2Ipopt) && col.count(kL2Oracle) && col.count(kL2SolveMs);
-  while (has_all && std::getline(in, line)) {
-    const auto f = split(line);
-    if (f.size() < header.size()) continue;
-    auto at = [&](const char* name) { return std::atof(f[col[name]].c_str()); };
-    ms.push_back(at(kL2SolveMs));
-    const int status = static_cast<int>(at(kL2Status));
-    if (status == kL2Infeasible) ++infeasible;
-    if (status == kL2Ok && at(kL2Oracle) >= 0) {
+  for (const auto& d : log) {
+    ms.push_back(d.solve_ms);
+    const int status = static_cast<int>(d.status);
+    if (status == control::kL2Infeasible) ++infeasible;
+    if (status == control::kL2Ok && d.oracle_n_active >= 0) {
       ++checked;
-      if (static_cast<int>(at(kL2Ipopt)) != static_cast<int>(at(kL2Oracle))) ++differs;
+      if (static_cast<int>(d.ipopt_n_active) != static_cast<int>(d.oracle_n_active)) ++differs;
     }
   }
   nlohmann::json s = {{"decisions", ms.size()},
@@ -114,9 +94,18 @@ nlohmann::json read_json_object(const std::string& path) {
 
 nlohmann::json level2_stats(const std::string& run_dir) {
   nlohmann::json out = nlohmann::json::object();
-  for (const char* side : {"L", "R"}) {
-    std::ifstream in(run_dir + "/level2-" + side + ".csv");
-    if (in) out[side] = level2_side(in);
+  for (int side = 0; side < 2; ++side) {
+    const std::string path = records::level2_log_path(run_dir, side);
+    if (!std::filesystem::exists(path)) continue;
+    const char* name = side == 0 ? "L" : "R";
+    // A broken log must not end the summary: the side is reported without decisions, with
+    // the reader's error.
+    try {
+      out[name] = level2_side(records::read_level2_log(path));
+    } catch (const records::RecordError& e) {
+      out[name] = level2_side({});
+      out[name]["error"] = e.what();
+    }
   }
   return out;
 }

@@ -13,11 +13,6 @@
 
 namespace maptr::deploy::fleet {
 
-/// Level-2 status codes in the groups' logs (msg::L2_OK, msg::L2_INFEASIBLE; the DDS side
-/// checks that they agree).
-inline constexpr int kL2Ok = 1;
-inline constexpr int kL2Infeasible = 2;
-
 /// What the launcher saw of a run.
 struct RunRecord {
   std::string status = "ok";  ///< "ok" or "aborted: ..." as the launcher ended the run
@@ -38,8 +33,10 @@ std::string final_status(const std::string& launch_status, const nlohmann::json&
 /// A JSON object from a file; an empty object if the file is missing or not an object.
 nlohmann::json read_json_object(const std::string& path);
 
-/// Level-2 figures from the groups' level2-<side>.csv: decisions, Ipopt solve time (median,
-/// p95, max) and, where the oracle ran on a solved problem, how often Ipopt's integer differed.
+/// Level-2 figures from the groups' level2-<side>.csv (records::read_level2_log): decisions,
+/// infeasible decisions, Ipopt solve time (median, p95, max) and, where the oracle ran on a
+/// solved problem, how often Ipopt's integer differed. A side without a log is absent; a side
+/// whose log cannot be read has no decisions and an "error".
 nlohmann::json level2_stats(const std::string& run_dir);
 
 /// A scenario file of the project by its path in the project (results are committed and must

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "records/assignments.hpp"
 #include "tests/integration/fleet_runner.hpp"
 
 using namespace maptr::testing;
@@ -44,14 +45,10 @@ bool is_png(const std::string& path) {
 
 /// The driving mask of one side in force at time t, from assignments.csv ("" if none).
 std::string mask_at(const std::string& assignments_csv, char side, double t) {
-  std::ifstream in(assignments_csv);
-  std::string line, mask;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    const auto c1 = line.find(','), c2 = line.find(',', c1 + 1);
-    if (c1 == std::string::npos || c2 == std::string::npos) continue;
-    if (std::stod(line.substr(0, c1)) > t) break;
-    if (line[c1 + 1] == side) mask = line.substr(c2 + 1);
+  std::string mask;
+  for (const auto& a : maptr::records::read_assignments(assignments_csv)) {
+    if (a.t_s > t) break;
+    if (a.side == side) mask = a.driving;
   }
   return mask;
 }

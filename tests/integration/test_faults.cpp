@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 
+#include "records/trace.hpp"
 #include "tests/integration/fleet_runner.hpp"
 
 using namespace maptr::testing;
@@ -205,19 +206,13 @@ TEST(Faults, KilledCentralMakesTheAgentsStopSafelyAndARestartedOneResumes) {
                                   "central@16"}),
                    out, 300);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream trace(out + "/trace.csv");
-  std::string line;
-  std::getline(trace, line);
   double v_min_outage = 1e9, volt_min_outage = 1e9, v_end = 0;
-  while (std::getline(trace, line)) {
-    std::vector<double> c;
-    std::stringstream ss(line);
-    for (std::string f; std::getline(ss, f, ',');) c.push_back(std::stod(f));
-    if (c[1] > 12.0 && c[1] < 16.0) {
-      v_min_outage = std::min(v_min_outage, c[5]);
-      volt_min_outage = std::min(volt_min_outage, c[11]);
+  for (const auto& row : maptr::records::read_trace(out + "/trace.csv")) {
+    if (row.t_s > 12.0 && row.t_s < 16.0) {
+      v_min_outage = std::min(v_min_outage, row.v_x_mps);
+      volt_min_outage = std::min(volt_min_outage, row.V_L_mean_V);
     }
-    v_end = c[5];
+    v_end = row.v_x_mps;
   }
   EXPECT_LT(volt_min_outage, 0.01) << "the agents kept driving without central";
   EXPECT_LT(v_min_outage, 9.8) << "the robot did not slow down without central";
@@ -232,21 +227,15 @@ TEST(Faults, KilledPlantEndsTheRunWithAClearErrorAndKeepsTheTrace) {
   EXPECT_EQ(r.exit_code, 1) << r.output;  // aborted
   const std::string status = r.summary["status"];
   EXPECT_EQ(status.rfind("aborted: the plant ended without results", 0), 0u) << status;
-  // The trace up to the kill is intact: every row complete, times strictly increasing to ~5 s.
-  std::ifstream trace(out + "/trace.csv");
-  std::string line;
-  std::getline(trace, line);
+  // The trace up to the kill is intact: every row complete (the reader throws on a malformed
+  // one and leaves out a last line cut by the kill), times strictly increasing to ~5 s.
+  std::vector<maptr::records::TraceRow> trace;
+  ASSERT_NO_THROW(trace = maptr::records::read_trace(out + "/trace.csv"));
   double last_t = -1;
   int rows = 0;
-  while (std::getline(trace, line)) {
-    if (std::count(line.begin(), line.end(), ',') != 26) break;  // a partial last line is allowed
-    std::stringstream ss(line);
-    std::string f;
-    std::getline(ss, f, ',');
-    std::getline(ss, f, ',');
-    const double t = std::stod(f);
-    EXPECT_GT(t, last_t);
-    last_t = t;
+  for (const auto& row : trace) {
+    EXPECT_GT(row.t_s, last_t);
+    last_t = row.t_s;
     ++rows;
   }
   EXPECT_GE(last_t, 4.9);

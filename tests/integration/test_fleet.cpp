@@ -5,6 +5,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "model/kinematics.hpp"
+#include "records/trace.hpp"
 #include "tests/integration/fleet_runner.hpp"
 
 using maptr::testing::run_args;
@@ -46,11 +48,8 @@ TEST(Fleet, Default16AgentsReachTheReferenceSpeed) {
                           "battery_discharge_mAh"})
     EXPECT_TRUE(s.contains(key)) << key;
   expect_clean_exit(s, 20);
-  // The trace has a header and one row per tick.
-  std::ifstream trace(out + "/trace.csv");
-  int lines = 0;
-  for (std::string l; std::getline(trace, l);) ++lines;
-  EXPECT_EQ(lines, 1001);
+  // The trace has one row per tick.
+  EXPECT_EQ(maptr::records::read_trace(out + "/trace.csv").size(), 1000u);
 }
 
 TEST(Fleet, SameRunTwiceGivesTheSameTrace) {
@@ -96,17 +95,12 @@ TEST(Fleet, ArcEndsAtThePoseTheKinematicsPredict) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // Dead-reckon the pose from the wheel speeds in the trace with the kinematics
   // (v = r (phidot_L + phidot_R)/2, w = r (phidot_R - phidot_L)/a), trapezoid rule.
-  std::ifstream trace(out + "/trace.csv");
-  std::string line;
-  std::getline(trace, line);
   double x = 0, y = 0, th = 0, prev_v = 0, prev_w = 0, prev_t = 0;
   double px = 0, py = 0, pth = 0;
   bool first = true;
-  while (std::getline(trace, line)) {
-    std::vector<double> c;
-    std::stringstream ss(line);
-    for (std::string f; std::getline(ss, f, ',');) c.push_back(std::stod(f));
-    const double t = c[1], v = 0.035 * (c[7] + c[8]) / 2.0, w = 0.035 * (c[8] - c[7]) / 0.2;
+  for (const auto& row : maptr::records::read_trace(out + "/trace.csv")) {
+    const auto body = maptr::model::body_from_rates({row.phidot_L_radps, row.phidot_R_radps}, 0.2, 0.035);
+    const double t = row.t_s, v = body.v_x, w = body.w;
     if (!first) {
       const double dt = t - prev_t, wm = 0.5 * (w + prev_w), vm = 0.5 * (v + prev_v);
       x += vm * std::cos(th + 0.5 * wm * dt) * dt;
@@ -115,7 +109,7 @@ TEST(Fleet, ArcEndsAtThePoseTheKinematicsPredict) {
     }
     first = false;
     prev_v = v, prev_w = w, prev_t = t;
-    px = c[2], py = c[3], pth = c[4];
+    px = row.x_m, py = row.y_m, pth = row.theta_rad;
   }
   // Plant pose vs kinematic dead reckoning: within 0.1% of the 80 m path and 1 mrad.
   EXPECT_NEAR(px, x, 0.08);

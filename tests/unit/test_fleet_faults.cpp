@@ -7,6 +7,7 @@
 
 #include "deploy/fleet/fault_analysis.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
+#include "records/trace.hpp"
 
 using maptr::config::FaultSpec;
 using namespace maptr::deploy;
@@ -92,13 +93,14 @@ namespace {
 /// 0.9 m/s from t = 2.0 to t = 2.5 s (10 % error), else exact.
 std::string synthetic_trace() {
   const std::string path = ::testing::TempDir() + "/fleet_trace.csv";
-  std::ofstream out(path);
-  out << "tick,t_s,x_m,y_m,theta_rad,v_x_mps,w_radps,phidot_L_radps,phidot_R_radps,ref_L_radps,ref_R_radps,"
-         "extra\n";
+  maptr::records::TraceWriter out(path);
   for (int k = 0; k <= 50; ++k) {
-    const double t = 0.1 * k;
-    const double v = (k >= 20 && k <= 25) ? 0.9 : 1.0;
-    out << k << "," << t << ",0,0,0," << v << ",0,10,10,10,10,0\n";
+    maptr::records::TraceRow row;
+    row.tick = k;
+    row.t_s = 0.1 * k;
+    row.v_x_mps = (k >= 20 && k <= 25) ? 0.9 : 1.0;
+    row.phidot_L_radps = row.phidot_R_radps = row.ref_L_radps = row.ref_R_radps = 10.0;
+    out.write(row);
   }
   return path;
 }
@@ -136,4 +138,18 @@ TEST(FleetFaultAnalysis, UndetectedAndUnrecoveredAreNull) {
   // No trace: no recovery.
   analyse_faults(failures, nlohmann::json::array(), trace + ".missing", 0.1);
   EXPECT_TRUE(failures[0]["recovered_s"].is_null());
+}
+
+TEST(FleetFaultAnalysis, ABrokenTraceLeavesTheFaultUnanalysed) {
+  // A trace without the reference columns cannot give a speed error: the analysis reports no
+  // recovery instead of failing the summary.
+  const std::string path = ::testing::TempDir() + "/fleet_trace_broken.csv";
+  std::ofstream(path) << "tick,t_s,v_x_mps\n0,0.0,1.0\n1,0.1,1.0\n";
+  nlohmann::json failures =
+      nlohmann::json::array({{{"target", "L1"}, {"action", "kill"}, {"at_s", 0.0}, {"wall_ms", 0.0}}});
+  const nlohmann::json events = nlohmann::json::array({{{"name", "L1"}, {"event", "died"}, {"t_s", 0.05}}});
+  analyse_faults(failures, events, path, 0.1);
+  EXPECT_DOUBLE_EQ(failures[0]["detected_s"].get<double>(), 0.05);
+  EXPECT_TRUE(failures[0]["recovered_s"].is_null());
+  EXPECT_DOUBLE_EQ(failures[0]["max_speed_error_pct"].get<double>(), 0.0);
 }

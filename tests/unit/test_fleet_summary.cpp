@@ -120,3 +120,21 @@ TEST(FleetSummary, SummaryOfARunFromItsFiles) {
   EXPECT_NE(human.find("status      ok"), std::string::npos) << human;
   EXPECT_NE(human.find("oracle differed 1 of 2"), std::string::npos) << human;
 }
+
+TEST(FleetSummary, ABrokenLevel2LogIsReportedWithoutDecisions) {
+  const std::string dir = ::testing::TempDir() + "/fleet_summary_broken_l2";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/level2-L.csv") << "t_s,n_live,status\n1,8,1\n";  // columns missing
+  std::ofstream(dir + "/level2-R.csv")
+      << "t_s,n_live,n_other,status,relaxed,ipopt_n_active,oracle_n_active,n_target,solve_ms\n"
+      << "1,8,8,1,3.2,4,-1,4,2.5\n";
+  const nlohmann::json l2 = level2_stats(dir);
+  EXPECT_EQ(l2["L"]["decisions"], 0);
+  EXPECT_NE(l2["L"]["error"].get<std::string>().find("n_other"), std::string::npos) << l2.dump();
+  EXPECT_FALSE(l2["L"].contains("solve_ms_median"));
+  EXPECT_EQ(l2["R"]["decisions"], 1);
+  EXPECT_EQ(l2["R"]["oracle_checked"], 0);  // the oracle did not run (-1)
+  EXPECT_DOUBLE_EQ(l2["R"]["solve_ms_median"].get<double>(), 2.5);
+  EXPECT_FALSE(l2["R"].contains("error"));
+}

@@ -40,6 +40,15 @@ TEST(Kinematics, WheelRatesAndTheirBodyVelocity) {
   EXPECT_NEAR(b.w, 2.0, 1e-14);
 }
 
+TEST(Kinematics, SpeedFromRatesIsTheForwardPartOfTheBodyVelocity) {
+  // r = 0.035 m, phidot = 200 and 300 rad/s: v_x = (200 + 300) 0.035 / 2 = 8.75 m/s, whatever
+  // the track; equal and opposite rates give no forward speed.
+  EXPECT_NEAR(mm::speed_from_rates({200.0, 300.0}, 0.035), 8.75, 1e-14);
+  EXPECT_NEAR(mm::speed_from_rates({-40.0, 40.0}, 0.035), 0.0, 1e-15);
+  for (double a : {0.2, 0.75})
+    EXPECT_EQ(mm::speed_from_rates({200.0, 300.0}, 0.035), mm::body_from_rates({200.0, 300.0}, a, 0.035).v_x);
+}
+
 TEST(Kinematics, RoundTrip) {
   // to_body(to_wheels(x)) = x and to_wheels(to_body(s)) = s, to 1e-14 relative to the magnitudes.
   double worst = 0.0;

@@ -1,3 +1,0 @@
-#pragma once
-#include "deploy/fleet/fault_analysis.hpp"
-#include "deploy/fleet/fault_schedule.hpp"
