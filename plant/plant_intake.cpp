@@ -2,6 +2,7 @@
 #include <fstream>
 #include <thread>
 
+#include "config/scenario.hpp"
 #include "model/kinematics.hpp"
 #include "plant/plant_loop.hpp"
 
@@ -9,7 +10,8 @@ namespace maptr::plant {
 
 void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
   for (auto& [r, h] : replies_.drain()) {
-    const Verdict v = check(r, lim, k);
+    Verdict v = check(r, lim, k);
+    if (v != Verdict::kMalformed && !sent_by(h, config::agent_name(r.side(), r.index()))) v = Verdict::kForged;
     if (v != Verdict::kAccepted) {
       ++rejected_;
       if (v == Verdict::kMalformed)
@@ -20,12 +22,14 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
     if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
     membership_.on_answer({Role::kAgent, static_cast<int>(r.side()), r.index()}, writer_id(h));
     cmd_.applied[r.side()][r.index()] = {true, drives(r), r.voltage_V(), r.current_A(), r.efficiency()};
+    reported_rejects_[config::agent_name(r.side(), r.index())] = r.rejected();
   }
 }
 
 void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
   for (auto& [g, h] : groups_.drain()) {
-    if (check(g, lim, k) != Verdict::kAccepted) {
+    const Verdict v = check(g, lim, k);
+    if (v != Verdict::kAccepted || !sent_by(h, g.side() == msg::SIDE_L ? "group-L" : "group-R")) {
       ++rejected_;
       continue;
     }
@@ -36,12 +40,13 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
       if (!membership_.at({Role::kAgent, s, j}).live)
         cmd_.mask[s][j] = 0;  // never trust a dead agent's assignment
     cmd_.group_stamp[s] = k;
+    reported_rejects_[s == msg::SIDE_L ? "group-L" : "group-R"] = g.rejected();
   }
 }
 
 void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
   for (auto& [c, h] : centrals_.drain()) {
-    if (check(c, lim, k) != Verdict::kAccepted) {
+    if (check(c, lim, k) != Verdict::kAccepted || !sent_by(h, "central")) {
       ++rejected_;
       continue;
     }
@@ -51,6 +56,7 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
       cmd_.relay[s] = c.relay_count_for()[s];
     }
     cmd_.central_stamp = k;
+    reported_rejects_["central"] = c.rejected();
   }
 }
 
@@ -126,6 +132,8 @@ int PlantLoop::report(bool stopped) {
   in.live_agents[0] = e.live_agents[0];
   in.live_agents[1] = e.live_agents[1];
   in.rejected_samples = rejected_;
+  in.rejected_by_process = reported_rejects_;
+  in.rejected_by_process["plant"] = rejected_;
   in.missed_deadlines = missed_deadlines_;
   in.declared_dead_by_deadline = declared_dead_;
   in.tick_timing_us = timing_.json();

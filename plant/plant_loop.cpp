@@ -1,5 +1,7 @@
 #include "plant/plant_loop.hpp"
 
+#include "comm/fleet_guid.hpp"
+
 #include <algorithm>
 #include <fstream>
 #include <thread>
@@ -101,8 +103,13 @@ bool PlantLoop::discover() {
       log_.info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,
                 std::chrono::duration<double>(Clock::now() - t_launch).count());
     }
-    for (auto& [c, h] : controls_.drain())
+    for (auto& [c, h] : controls_.drain()) {
+      if (!sent_by(h, "launcher")) {
+        ++rejected_;
+        continue;
+      }
       if (c.command() == msg::CONTROL_START) started = true;
+    }
   }
   return started;
 }
@@ -135,8 +142,13 @@ void PlantLoop::wait_gate(long long k) {
   gate_.hold(static_cast<uint64_t>(k));
   const double t0 = now_s();
   while (!stop_.load() && !gate_.released(membership_.launcher_seq())) {
-    for (auto& [c, h] : controls_.drain())
+    for (auto& [c, h] : controls_.drain()) {
+      if (!sent_by(h, "launcher")) {
+        ++rejected_;
+        continue;
+      }
       if (c.command() == msg::CONTROL_GATE_OPEN) gate_.on_open(c.tick(), c.member_seq());
+    }
     apply_launcher_events();
     if (gate_.timed_out(now_s() - t0)) {
       log_.error("the launcher did not answer the fault gate of tick {} within {} s: going on", k,
@@ -193,8 +205,18 @@ void PlantLoop::log_membership() {
 
 // Launcher events: a death ends the wait for that process; a restarted process that is
 // matched and ready is waited for from the next tick on (its old writer no longer counts).
+bool PlantLoop::sent_by(const Handle& writer, const std::string& name) const {
+  const uint32_t fleet = p_.options().fleet_id;
+  return fleet == 0 || comm::written_by(fleet, sc_.robot.agents, writer, name);
+}
+
 void PlantLoop::apply_launcher_events() {
   for (auto& [e, h] : members_.drain()) {
+    if (!sent_by(h, "launcher")) {
+      ++rejected_;
+      log_.warn("rejected a membership event for {} that the launcher did not send", e.name());
+      continue;
+    }
     membership_.on_launcher(e.seq(), launcher_event(e.kind()), e.name());
   }
   log_membership();

@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -84,6 +85,8 @@ class PlantLoop {
   void take_centrals(long long k, const SampleLimits& lim);
   SampleLimits limits() const;
   void log_membership();
+  /// True when `writer` belongs to the process `name` of this fleet (always, without a fleet id).
+  bool sent_by(const Handle& writer, const std::string& name) const;
   void wait(std::chrono::milliseconds at_most);
   double now_s() const { return std::chrono::duration<double>(Clock::now() - origin_).count(); }
 
@@ -121,6 +124,7 @@ class PlantLoop {
   Clock::time_point wall0_;
   std::string end_reason_ = "duration reached";
   uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;
+  std::map<std::string, uint64_t> reported_rejects_;  ///< what each follower says it dropped
 };
 
 }  // namespace maptr::plant

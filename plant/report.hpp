@@ -3,6 +3,7 @@
 // timing of the lock-step ticks and the content of plant.json, which the launcher and the
 // experiments read by key.
 #include <nlohmann/json.hpp>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,8 @@ struct ReportInputs {
   double loop_wall_s = 0.0;
   int live_agents[2] = {0, 0};
   uint64_t rejected_samples = 0;
+  /// Samples each process dropped (the plant's own, and what each follower last reported).
+  std::map<std::string, uint64_t> rejected_by_process;
   uint64_t missed_deadlines = 0;
   uint64_t declared_dead_by_deadline = 0;
   nlohmann::json tick_timing_us = nlohmann::json::object();

@@ -23,7 +23,8 @@ bool valid(const msg::CentralCommand& c, const SampleLimits& l);
 /// True when the agent's state drives its motor over the tick (active, holding or stopping).
 bool drives(const msg::AgentReply& r);
 
-enum class Verdict { kAccepted, kMalformed, kOtherTick };
+/// kForged: well-formed, but its writer is not the process the sample speaks for.
+enum class Verdict { kAccepted, kMalformed, kOtherTick, kForged };
 
 /// Whether a sample counts for tick k: well-formed and answering k.
 template <class Sample>

@@ -149,6 +149,10 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["failures"] = failures;
   if (r.chaos_seed >= 0) s["chaos_seed"] = r.chaos_seed;
   s["plant"] = plant;
+  // Samples dropped as malformed, stale or forged, by the process that dropped them.
+  nlohmann::json rejected = plant.value("rejected_by_process", nlohmann::json::object());
+  rejected["launcher"] = r.launcher_rejected;
+  s["rejected_samples"] = rejected;
   s["level2"] = level2_stats(run_dir);
   s["processes"] = processes_json(kids);
   const std::string trace = run_dir + "/trace.csv";

@@ -23,6 +23,7 @@ struct RunRecord {
   long long chaos_seed = -1;                          ///< recorded when >= 0
   PlantState last_tick;                               ///< the plant's last tick the launcher saw
   nlohmann::json failures = nlohmann::json::array();  ///< the fault records
+  long launcher_rejected = 0;  ///< ticks and fault gates the launcher dropped (not from the plant)
 };
 
 /// The run's status: the launcher's if it aborted, else the plant's ("unknown" without one),

@@ -119,6 +119,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "max_speed_error_pct",
                                          "rms_speed_error_pct",
                                          "rejected_samples",
+                                         "rejected_by_process",
                                          "missed_deadlines",
                                          "tick_timing_us",
                                          "declared_dead_by_deadline",
