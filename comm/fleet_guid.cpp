@@ -44,9 +44,13 @@ std::optional<int> fleet_participant(uint32_t fleet_id, const rtps::InstanceHand
   return static_cast<int>(get_be32(v + 4));
 }
 
-bool written_by(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer, const std::string& name) {
+bool written_by_id(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer, int base_id) {
   const auto id = fleet_participant(fleet_id, writer);
-  return id && participant_name(*id, agents) == name;
+  return id && base_id >= 0 && *id % fleet_stride(agents) == base_id;
+}
+
+bool written_by(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer, const std::string& name) {
+  return written_by_id(fleet_id, agents, writer, base_participant_id(name, agents));
 }
 
 }  // namespace maptr::comm

@@ -25,6 +25,11 @@ eprosima::fastrtps::rtps::GuidPrefix_t fleet_guid_prefix(uint32_t fleet_id, int 
 std::optional<int> fleet_participant(uint32_t fleet_id, const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
 
 /// True when `writer` belongs to the process `name` of fleet `fleet_id` (any of its starts).
+/// True when `writer` belongs to the process whose first start had participant id `base_id`
+/// (comm/fleet_ids.hpp), in any of its starts. No strings: cheap enough for every sample.
+bool written_by_id(uint32_t fleet_id, int agents, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+                   int base_id);
+
 bool written_by(uint32_t fleet_id, int agents, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
                 const std::string& name);
 

@@ -16,7 +16,7 @@ int base_participant_id(const std::string& name, int agents) {
     if (name == kControllers[i]) return kPlantParticipantId + i;
   int side = 0, index = 0;
   const int per_side = agents / 2;
-  if (config::parse_agent_name(name, side, index) && index < per_side) return kFirstAgentId + side * per_side + index;
+  if (config::parse_agent_name(name, side, index) && index < per_side) return agent_participant_id(side, index, agents);
   return -1;
 }
 

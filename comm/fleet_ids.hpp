@@ -12,6 +12,11 @@ namespace maptr::comm {
 inline constexpr int kDiscoveryParticipantId = 0;
 inline constexpr int kLauncherParticipantId = 1;
 inline constexpr int kPlantParticipantId = 2;
+inline constexpr int kCentralParticipantId = 3;
+/// Participant id of the first start of group `side` (0 L, 1 R).
+inline constexpr int group_participant_id(int side) { return 4 + side; }
+/// Participant id of the first start of agent `index` of `side` in a fleet of `agents` agents.
+inline constexpr int agent_participant_id(int side, int index, int agents) { return 6 + side * (agents / 2) + index; }
 
 /// Participant ids in one id window of a fleet of `agents` agents.
 int fleet_stride(int agents);

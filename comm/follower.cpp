@@ -31,7 +31,7 @@ TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
 
 bool TickFollower::from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer) {
   const int agents = args_.scenario.robot.agents;
-  if (args_.dds.fleet_id != 0) return written_by(args_.dds.fleet_id, agents, writer, "plant");
+  if (args_.dds.fleet_id != 0) return written_by_id(args_.dds.fleet_id, agents, writer, kPlantParticipantId);
   // No fleet id (a process started by hand without one): the first writer heard is the plant.
   if (!plant_writer_) plant_writer_ = writer;
   return *plant_writer_ == writer;

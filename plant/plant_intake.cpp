@@ -2,6 +2,7 @@
 #include <fstream>
 #include <thread>
 
+#include "comm/fleet_ids.hpp"
 #include "config/scenario.hpp"
 #include "model/kinematics.hpp"
 #include "plant/plant_loop.hpp"
@@ -11,7 +12,8 @@ namespace maptr::plant {
 void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
   for (auto& [r, h] : replies_.drain()) {
     Verdict v = check(r, lim, k);
-    if (v != Verdict::kMalformed && !sent_by(h, config::agent_name(r.side(), r.index()))) v = Verdict::kForged;
+    if (v != Verdict::kMalformed && !sent_by(h, comm::agent_participant_id(r.side(), r.index(), sc_.robot.agents)))
+      v = Verdict::kForged;
     if (v != Verdict::kAccepted) {
       ++rejected_;
       if (v == Verdict::kMalformed)
@@ -22,14 +24,14 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
     if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
     membership_.on_answer({Role::kAgent, static_cast<int>(r.side()), r.index()}, writer_id(h));
     cmd_.applied[r.side()][r.index()] = {true, drives(r), r.voltage_V(), r.current_A(), r.efficiency()};
-    reported_rejects_[config::agent_name(r.side(), r.index())] = r.rejected();
+    agent_rejects_[r.side()][r.index()] = r.rejected();
   }
 }
 
 void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
   for (auto& [g, h] : groups_.drain()) {
     const Verdict v = check(g, lim, k);
-    if (v != Verdict::kAccepted || !sent_by(h, g.side() == msg::SIDE_L ? "group-L" : "group-R")) {
+    if (v != Verdict::kAccepted || !sent_by(h, comm::group_participant_id(g.side()))) {
       ++rejected_;
       continue;
     }
@@ -40,13 +42,13 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
       if (!membership_.at({Role::kAgent, s, j}).live)
         cmd_.mask[s][j] = 0;  // never trust a dead agent's assignment
     cmd_.group_stamp[s] = k;
-    reported_rejects_[s == msg::SIDE_L ? "group-L" : "group-R"] = g.rejected();
+    group_rejects_[s] = g.rejected();
   }
 }
 
 void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
   for (auto& [c, h] : centrals_.drain()) {
-    if (check(c, lim, k) != Verdict::kAccepted || !sent_by(h, "central")) {
+    if (check(c, lim, k) != Verdict::kAccepted || !sent_by(h, comm::kCentralParticipantId)) {
       ++rejected_;
       continue;
     }
@@ -56,7 +58,7 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
       cmd_.relay[s] = c.relay_count_for()[s];
     }
     cmd_.central_stamp = k;
-    reported_rejects_["central"] = c.rejected();
+    central_rejects_ = c.rejected();
   }
 }
 
@@ -132,8 +134,7 @@ int PlantLoop::report(bool stopped) {
   in.live_agents[0] = e.live_agents[0];
   in.live_agents[1] = e.live_agents[1];
   in.rejected_samples = rejected_;
-  in.rejected_by_process = reported_rejects_;
-  in.rejected_by_process["plant"] = rejected_;
+  in.rejected_by_process = rejects_by_process();
   in.missed_deadlines = missed_deadlines_;
   in.declared_dead_by_deadline = declared_dead_;
   in.tick_timing_us = timing_.json();

@@ -1,6 +1,7 @@
 #include "plant/plant_loop.hpp"
 
 #include "comm/fleet_guid.hpp"
+#include "config/scenario.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -80,6 +81,7 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
   w_gate_ = p_.writer(p_.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched);
   for (int s = 0; s < 2; ++s) {
     cmd_.applied[s].assign(per_side_, sim::AgentApplied{});
+    agent_rejects_[s].assign(per_side_, 0);
     cmd_.mask[s].assign(per_side_, 0);
   }
 }
@@ -104,7 +106,7 @@ bool PlantLoop::discover() {
                 std::chrono::duration<double>(Clock::now() - t_launch).count());
     }
     for (auto& [c, h] : controls_.drain()) {
-      if (!sent_by(h, "launcher")) {
+      if (!sent_by(h, comm::kLauncherParticipantId)) {
         ++rejected_;
         continue;
       }
@@ -143,7 +145,7 @@ void PlantLoop::wait_gate(long long k) {
   const double t0 = now_s();
   while (!stop_.load() && !gate_.released(membership_.launcher_seq())) {
     for (auto& [c, h] : controls_.drain()) {
-      if (!sent_by(h, "launcher")) {
+      if (!sent_by(h, comm::kLauncherParticipantId)) {
         ++rejected_;
         continue;
       }
@@ -205,14 +207,23 @@ void PlantLoop::log_membership() {
 
 // Launcher events: a death ends the wait for that process; a restarted process that is
 // matched and ready is waited for from the next tick on (its old writer no longer counts).
-bool PlantLoop::sent_by(const Handle& writer, const std::string& name) const {
+bool PlantLoop::sent_by(const Handle& writer, int base_id) const {
   const uint32_t fleet = p_.options().fleet_id;
-  return fleet == 0 || comm::written_by(fleet, sc_.robot.agents, writer, name);
+  return fleet == 0 || comm::written_by_id(fleet, sc_.robot.agents, writer, base_id);
+}
+
+std::map<std::string, uint64_t> PlantLoop::rejects_by_process() const {
+  std::map<std::string, uint64_t> m{{"plant", rejected_}, {"central", central_rejects_}};
+  for (int s = 0; s < 2; ++s) {
+    m[s == msg::SIDE_L ? "group-L" : "group-R"] = group_rejects_[s];
+    for (int j = 0; j < per_side_; ++j) m[config::agent_name(s, j)] = agent_rejects_[s][static_cast<std::size_t>(j)];
+  }
+  return m;
 }
 
 void PlantLoop::apply_launcher_events() {
   for (auto& [e, h] : members_.drain()) {
-    if (!sent_by(h, "launcher")) {
+    if (!sent_by(h, comm::kLauncherParticipantId)) {
       ++rejected_;
       log_.warn("rejected a membership event for {} that the launcher did not send", e.name());
       continue;

@@ -85,8 +85,11 @@ class PlantLoop {
   void take_centrals(long long k, const SampleLimits& lim);
   SampleLimits limits() const;
   void log_membership();
-  /// True when `writer` belongs to the process `name` of this fleet (always, without a fleet id).
-  bool sent_by(const Handle& writer, const std::string& name) const;
+  /// True when `writer` belongs to the process whose first participant id is `base_id`
+  /// (comm/fleet_ids.hpp) in this fleet; always, without a fleet id.
+  bool sent_by(const Handle& writer, int base_id) const;
+  /// Samples dropped by each process: the plant's own and what each follower last reported.
+  std::map<std::string, uint64_t> rejects_by_process() const;
   void wait(std::chrono::milliseconds at_most);
   double now_s() const { return std::chrono::duration<double>(Clock::now() - origin_).count(); }
 
@@ -124,7 +127,9 @@ class PlantLoop {
   Clock::time_point wall0_;
   std::string end_reason_ = "duration reached";
   uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;
-  std::map<std::string, uint64_t> reported_rejects_;  ///< what each follower says it dropped
+  /// What each follower last said it dropped (its `rejected` field).
+  std::vector<uint64_t> agent_rejects_[2];
+  uint64_t group_rejects_[2] = {0, 0}, central_rejects_ = 0;
 };
 
 }  // namespace maptr::plant

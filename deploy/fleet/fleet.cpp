@@ -10,6 +10,7 @@
 #include <random>
 
 #include "comm/fleet_ids.hpp"
+#include "comm/fleet_guid.hpp"
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
 
@@ -61,6 +62,14 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   // The fleet id makes every participant's GUID prefix say which process of this fleet it is
   // (comm/fleet_guid.hpp): followers take ticks only from the plant's writer.
   dds_.fleet_id = std::random_device{}() | 1u;
+  // The plant's participant, known from the fleet id and its participant id: its ticks and gates
+  // are the only ones the launcher follows (an external plant is started with the same ids).
+  {
+    const auto p = comm::fleet_guid_prefix(dds_.fleet_id, comm::kPlantParticipantId);
+    GuidPrefix plant{};
+    std::copy(std::begin(p.value), std::end(p.value), plant.begin());
+    clock_.learn_plant(plant);
+  }
   dds_.lease_s = cfg.lease_s(agents);
   rec_.transport = o.transport != "auto" ? o.transport : (agents <= cfg.shm_max_agents ? "shm" : "udp");
   rec_.chaos_seed = o.chaos_seed;
@@ -172,15 +181,11 @@ void Fleet::start_processes() {
 }
 
 void Fleet::take_ready() {
-  const Child& plant = kids_.front();
   for (auto& [r, h] : ready_.drain()) {
     if (!r.ready()) continue;
     ready_names_.insert(r.name());
     for (auto& c : kids_)
       if (c.external && c.name == r.name()) c.pid = static_cast<pid_t>(r.pid());
-    // The plant's participant: its ticks and gates are the only ones the launcher follows.
-    if (r.name() == plant.name && static_cast<pid_t>(r.pid()) == plant.pid)
-      clock_.learn_plant(writer_prefix(h));
   }
 }
 

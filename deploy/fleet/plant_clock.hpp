@@ -1,7 +1,7 @@
 #pragma once
 // The launcher's view of simulated time, taken only from the plant: ticks and fault gates
-// count only when their writer belongs to the plant's participant (same GUID prefix as the
-// writer of the plant's NodeReady). A sample from any other participant on maptr/tick or
+// count only when their writer belongs to the plant's participant (the GUID prefix the fleet id
+// gives the plant: comm/fleet_guid.hpp). A sample from any other participant on maptr/tick or
 // maptr/gate (a forgery, or a stale plant) is counted and ignored. Pure: writers are named by
 // their GUID prefix.
 #include <algorithm>
@@ -24,7 +24,7 @@ struct PlantState {
 
 class PlantClock {
  public:
-  /// The plant's participant, learnt from its NodeReady (the latest one wins).
+  /// The plant's participant (its GUID prefix).
   void learn_plant(const GuidPrefix& p) { plant_ = p; }
   bool knows_plant() const { return plant_.has_value(); }
 

@@ -40,6 +40,13 @@ TEST(FleetIds, NamesAndIdsOfA16AgentFleet) {
   EXPECT_EQ(participant_name(1, 16), "launcher");
   for (const std::string name : {"plant", "central", "group-L", "group-R", "L5", "R3"})
     EXPECT_EQ(participant_name(base_participant_id(name, 16), 16), name);
+  // The numeric ids the plant checks every sample against are the same plan.
+  EXPECT_EQ(base_participant_id("central", 16), kCentralParticipantId);
+  for (int side = 0; side < 2; ++side) {
+    EXPECT_EQ(base_participant_id(side == 0 ? "group-L" : "group-R", 16), group_participant_id(side));
+    for (int j = 0; j < 8; ++j)
+      EXPECT_EQ(participant_name(agent_participant_id(side, j, 16), 16), (side == 0 ? "L" : "R") + std::to_string(j));
+  }
 }
 
 TEST(FleetIds, AWriterIsKnownByItsFleetAndParticipant) {
@@ -58,6 +65,8 @@ TEST(FleetIds, AWriterIsKnownByItsFleetAndParticipant) {
   const auto l3 = handle_of(fleet_guid_prefix(fleet, base_participant_id("L3", 16) + 2 * fleet_stride(16)));
   EXPECT_TRUE(written_by(fleet, 16, l3, "L3"));
   EXPECT_FALSE(written_by(fleet, 16, l3, "L4"));
+  EXPECT_TRUE(written_by_id(fleet, 16, l3, agent_participant_id(0, 3, 16)));
+  EXPECT_FALSE(written_by_id(fleet, 16, l3, kPlantParticipantId));
 }
 
 TEST(FleetIds, PrefixesKeepFastDdsSameHostAndDistinctProcesses) {
