@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|level2|experiment|bench|kill|restart`).
+// dispatches (`maptr run|level2|experiment|bench|kill|restart|top`).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -9,6 +9,7 @@
 #include "deploy/cli/paths.hpp"
 #include "deploy/cli/run_command.hpp"
 #include "deploy/cli/study_commands.hpp"
+#include "deploy/cli/top_command.hpp"
 
 using namespace maptr::deploy::cli;
 
@@ -20,12 +21,14 @@ int main(int argc, char** argv) {
   ExperimentArgs experiment_args;
   BenchArgs bench_args;
   SignalArgs kill_args, restart_args;
+  TopArgs top_args;
   auto* run = add_run_command(app, run_args);
   auto* level2 = add_level2_command(app, level2_args);
   auto* experiment = add_experiment_command(app, experiment_args);
   auto* bench = add_bench_command(app, bench_args);
   auto* kill = add_signal_command(app, "kill", kill_args);
   auto* restart = add_signal_command(app, "restart", restart_args);
+  auto* top = add_top_command(app, top_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -42,6 +45,7 @@ int main(int argc, char** argv) {
     if (level2->parsed()) return cmd_level2(level2_args);
     if (kill->parsed()) return cmd_signal("kill", kill_args);
     if (restart->parsed()) return cmd_signal("restart", restart_args);
+    if (top->parsed()) return cmd_top(top_args);
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 1;

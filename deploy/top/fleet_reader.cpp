@@ -1,0 +1,169 @@
+#include "deploy/top/fleet_reader.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <vector>
+
+#include "comm/fleet_guid.hpp"
+#include "config/scenario.hpp"
+#include "idl/maptrPubSubTypes.h"
+
+namespace maptr::top {
+
+namespace dds = eprosima::fastdds::dds;
+using Handle = eprosima::fastrtps::rtps::InstanceHandle_t;
+
+namespace {
+
+/// History depth for ticks and central's commands (only the newest is shown) and group statuses
+/// (one per side).
+constexpr int kTickDepth = 1, kCentralDepth = 1, kGroupDepth = 2;
+
+/// A listener that takes every sample with the time it arrived and wakes the loop.
+template <class T>
+class TimedInbox : public dds::DataReaderListener {
+ public:
+  struct Item {
+    T sample;
+    double arrival_s;
+    Handle writer;
+    double written_s;  ///< the writer's source timestamp, s since the epoch
+  };
+  explicit TimedInbox(comm::Signal& s) : signal_(s) {}
+
+  void on_data_available(dds::DataReader* reader) override {
+    T sample;
+    dds::SampleInfo info;
+    bool any = false;
+    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) continue;
+      std::lock_guard<std::mutex> g(m_);
+      q_.push_back({sample, steady_now_s(), info.publication_handle, info.source_timestamp.to_ns() * 1e-9});
+      any = true;
+    }
+    if (any) signal_.notify();
+  }
+  std::vector<Item> drain() {
+    std::lock_guard<std::mutex> g(m_);
+    std::vector<Item> out;
+    out.swap(q_);
+    return out;
+  }
+
+ private:
+  comm::Signal& signal_;
+  std::mutex m_;
+  std::vector<Item> q_;
+};
+
+dds::DataReaderQos watch_qos(int depth) {
+  dds::DataReaderQos q = dds::DATAREADER_QOS_DEFAULT;
+  q.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
+  q.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+  q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+  q.history().depth = depth;
+  q.resource_limits().max_samples = depth;
+  q.resource_limits().max_instances = 1;
+  q.resource_limits().max_samples_per_instance = depth;
+  q.data_sharing().off();
+  return q;
+}
+
+double system_now_s() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+double steady_now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+FleetCoordinates read_fleet(const std::string& run_dir) {
+  const std::string path = run_dir + "/fleet.json";
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": no such file (not a run folder, or the fleet has not started)");
+  nlohmann::json j;
+  try {
+    in >> j;
+    FleetCoordinates c;
+    c.info.run_dir = run_dir;
+    c.info.domain = j.at("domain").get<int>();
+    c.discovery_server = j.at("discovery_server").get<std::string>();
+    c.lease_s = j.at("lease_s").get<double>();
+    c.fleet_id = j.at("fleet_id").get<uint32_t>();
+    c.launcher_pid = j.at("launcher_pid").get<int>();
+    const config::Scenario sc = config::load_scenario(j.at("config").get<std::string>());
+    c.info.scenario = sc.name;
+    c.info.agents = sc.robot.agents;
+    c.info.duration_s = sc.duration_s;
+    return c;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+}
+
+struct FleetReader::Inboxes {
+  explicit Inboxes(comm::Signal& s)
+      : ticks(s), replies(s), groups(s), centrals(s), members(s), gates(s), ready(s) {}
+  TimedInbox<msg::PlantTick> ticks;
+  TimedInbox<msg::AgentReply> replies;
+  TimedInbox<msg::GroupStatus> groups;
+  TimedInbox<msg::CentralCommand> centrals;
+  TimedInbox<msg::MembershipEvent> members;
+  TimedInbox<msg::FaultGate> gates;
+  TimedInbox<msg::NodeReady> ready;
+};
+
+FleetReader::FleetReader(const FleetCoordinates& c)
+    : fleet_id_(c.fleet_id), joined_s_(system_now_s()), in_(std::make_unique<Inboxes>(signal_)) {
+  comm::DdsOptions o;
+  o.domain = c.info.domain;
+  o.discovery_server = c.discovery_server;
+  o.lease_s = c.lease_s;
+  o.shm = false;
+  p_ = std::make_unique<comm::Participant>("maptr-top", o);
+  auto& p = *p_;
+  auto* sub = p.raw()->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  if (!sub) throw std::runtime_error("cannot create the DDS subscriber of maptr top");
+  auto watch = [&](dds::Topic* t, int depth, dds::DataReaderListener* l) {
+    if (!sub->create_datareader(t, watch_qos(depth), l, dds::StatusMask::data_available()))
+      throw std::runtime_error("cannot create a reader on " + t->get_name());
+  };
+  watch(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), kTickDepth, &in_->ticks);
+  watch(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), std::max(1, c.info.agents),
+        &in_->replies);
+  watch(p.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), kGroupDepth, &in_->groups);
+  watch(p.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), kCentralDepth, &in_->centrals);
+  p.reader(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched,
+           &in_->members);
+  p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &in_->gates);
+  p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &in_->ready);
+}
+
+FleetReader::~FleetReader() { p_.reset(); }
+
+void FleetReader::drain_into(FleetView& v) {
+  auto ours = [&](const Handle& h) {
+    return fleet_id_ == 0 || comm::fleet_participant(fleet_id_, h).has_value();
+  };
+  for (auto& x : in_->ready.drain())
+    if (ours(x.writer)) v.on_ready(x.sample);
+  for (auto& x : in_->members.drain())
+    if (ours(x.writer)) v.on_membership(x.sample, x.written_s < joined_s_);
+  for (auto& x : in_->gates.drain())
+    if (ours(x.writer)) v.on_gate(x.sample);
+  for (auto& x : in_->ticks.drain())
+    if (ours(x.writer)) v.on_tick(x.sample, x.arrival_s);
+  for (auto& x : in_->centrals.drain())
+    if (ours(x.writer)) v.on_central(x.sample);
+  for (auto& x : in_->groups.drain())
+    if (ours(x.writer)) v.on_group(x.sample);
+  for (auto& x : in_->replies.drain())
+    if (ours(x.writer)) v.on_reply(x.sample, x.arrival_s);
+}
+
+}  // namespace maptr::top

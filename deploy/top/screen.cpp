@@ -1,0 +1,64 @@
+#include "deploy/top/screen.hpp"
+
+#include <curses.h>
+#include <signal.h>
+
+#include <atomic>
+#include <string>
+
+#include "deploy/top/view_text.hpp"
+
+namespace maptr::top {
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+void on_interrupt(int) { g_interrupted.store(true); }
+
+/// The curses session: set up in the constructor, the terminal restored in the destructor.
+class Curses {
+ public:
+  Curses() {
+    initscr();
+    cbreak();
+    noecho();
+    curs_set(0);
+    keypad(stdscr, TRUE);
+    timeout(static_cast<int>(1000.0 / kRefreshHz));
+  }
+  ~Curses() { endwin(); }
+  Curses(const Curses&) = delete;
+  Curses& operator=(const Curses&) = delete;
+};
+
+void draw(const FleetView& v) {
+  int rows = 0, cols = 0;
+  getmaxyx(stdscr, rows, cols);
+  const auto lines = layout(v, cols, rows);
+  erase();
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (i == 0) attron(A_REVERSE);
+    mvaddnstr(static_cast<int>(i), 0, lines[i].c_str(), cols);
+    if (i == 0) attroff(A_REVERSE);
+  }
+  refresh();
+}
+
+}  // namespace
+
+int run_screen(Watch& w) {
+  struct sigaction sa {};
+  sa.sa_handler = on_interrupt;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  Curses session;
+  while (!g_interrupted.load()) {
+    w.poll();
+    draw(w.view());
+    const int key = getch();  // waits at most one refresh period; KEY_RESIZE redraws at once
+    if (key == 'q' || key == 'Q') break;
+  }
+  return 0;
+}
+
+}  // namespace maptr::top
