@@ -37,6 +37,14 @@ uint64_t Signal::wait_until(uint64_t seen, std::chrono::steady_clock::time_point
   return count_.load();
 }
 
+void MatchCounter::on_publication_matched(dds::DataWriter*, const dds::PublicationMatchedStatus& s) {
+  if (fleet_id_ == 0)
+    matched_.store(s.current_count);
+  else if (fleet_participant(fleet_id_, s.last_subscription_handle))
+    matched_.fetch_add(s.current_count_change);
+  if (signal_) signal_->notify();
+}
+
 namespace {
 
 rtps::Locator_t parse_locator(const std::string& addr) {

@@ -142,19 +142,20 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
   std::atomic<int> matched_{0};
 };
 
-/// Writer listener that counts matched readers.
+/// Writer listener that counts matched readers. After only_fleet(id) (before the writer is
+/// created) it counts only the readers of that fleet (their GUID prefix, comm/fleet_guid.hpp), so
+/// that a watcher on the domain, such as `maptr top`, is never taken for a member.
 class MatchCounter : public eprosima::fastdds::dds::DataWriterListener {
  public:
   explicit MatchCounter(Signal* s = nullptr) : signal_(s) {}
+  void only_fleet(uint32_t fleet_id) { fleet_id_ = fleet_id; }
   void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
-                              const eprosima::fastdds::dds::PublicationMatchedStatus& s) override {
-    matched_.store(s.current_count);
-    if (signal_) signal_->notify();
-  }
+                              const eprosima::fastdds::dds::PublicationMatchedStatus& s) override;
   int matched() const { return matched_.load(); }
 
  private:
   Signal* signal_;
+  uint32_t fleet_id_ = 0;
   std::atomic<int> matched_{0};
 };
 

@@ -23,6 +23,7 @@ bool tick_valid(const msg::PlantTick& t, std::size_t per_side) {
 TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
                            std::shared_ptr<spdlog::logger> log)
     : args_(args), kind_(node_kind), log_(std::move(log)) {
+  answer_match_.only_fleet(args_.dds.fleet_id);  // a watcher of the answers is not the plant
   participant_ = std::make_unique<Participant>(args_.name, args_.dds);
   auto& p = *participant_;
   p.reader(p.topic<msg::PlantTickPubSubType>(topic::kTick), Profile::kStream, &ticks_);

@@ -68,6 +68,7 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
       membership_(per_side_, wall_ms_now),
       gate_(fault_times(args.scenario.faults), c.gate_timeout_s),
       barrier_(c.deadline_s(args.scenario.robot.agents), c.resend_s) {
+  tick_match_.only_fleet(args.dds.fleet_id);  // readers outside the fleet (a watcher) are no members
   w_tick_ =
       p_.writer(p_.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match_);
   p_.reader(p_.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &replies_);
