@@ -1,5 +1,10 @@
 #include "deploy/top/fleet_reader.hpp"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <fstream>
 #include <mutex>
@@ -8,6 +13,7 @@
 #include <vector>
 
 #include "comm/fleet_guid.hpp"
+#include "comm/shm_files.hpp"
 #include "config/scenario.hpp"
 #include "idl/maptrPubSubTypes.h"
 
@@ -72,6 +78,34 @@ dds::DataReaderQos watch_qos(int depth) {
   return q;
 }
 
+/// RTPS unicast ports of participant `id`: metatraffic d0 + 2 id + d1 (10), user d0 + 2 id + d3 (11).
+constexpr int kMetatrafficOffset = 10, kUserOffset = 11, kPortsPerId = 2;
+
+bool udp_port_free(int port) {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return false;
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
+  close(fd);
+  return ok;
+}
+
+/// A participant id of `domain` whose unicast ports are free, searched from the highest id
+/// down. Fast DDS would pick the lowest free id itself, but a fleet holds the lowest ids (and
+/// a large one more than Fast DDS's 100 port mutations skip); its restarts move up one window of
+/// ids at a time, so the top of the range is the last they reach.
+int free_participant_id(int domain) {
+  const int base = comm::rtps_domain_port_base(domain);
+  for (int id = comm::rtps_max_participant_id(domain); id > 0; --id)
+    if (udp_port_free(base + kMetatrafficOffset + kPortsPerId * id) &&
+        udp_port_free(base + kUserOffset + kPortsPerId * id))
+      return id;
+  throw std::runtime_error("no free DDS participant id on domain " + std::to_string(domain));
+}
+
 double system_now_s() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
@@ -125,6 +159,7 @@ FleetReader::FleetReader(const FleetCoordinates& c)
   o.discovery_server = c.discovery_server;
   o.lease_s = c.lease_s;
   o.shm = false;
+  o.participant_id = free_participant_id(o.domain);
   p_ = std::make_unique<comm::Participant>("maptr-top", o);
   auto& p = *p_;
   auto* sub = p.raw()->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);

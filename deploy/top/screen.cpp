@@ -12,6 +12,7 @@ namespace maptr::top {
 
 namespace {
 
+constexpr short kDeadColour = 1;
 std::atomic<bool> g_interrupted{false};
 void on_interrupt(int) { g_interrupted.store(true); }
 
@@ -25,11 +26,30 @@ class Curses {
     curs_set(0);
     keypad(stdscr, TRUE);
     timeout(static_cast<int>(1000.0 / kRefreshHz));
+    if (has_colors()) {
+      start_color();
+      use_default_colors();
+      init_pair(kDeadColour, COLOR_RED, -1);
+    }
   }
   ~Curses() { endwin(); }
   Curses(const Curses&) = delete;
   Curses& operator=(const Curses&) = delete;
 };
+
+/// Dead agents in red: their cell in the detailed layout, their letter in the compact one.
+void mark_dead(int row, const std::string& line) {
+  const bool agents = line.size() > 2 && (line[0] == 'L' || line[0] == 'R');
+  if (!agents || !has_colors()) return;
+  const bool cells = line[1] >= '0' && line[1] <= '9';
+  for (std::size_t at = 0; cells && (at = line.find(" dead ", at)) != std::string::npos; ++at) {
+    const std::size_t cell = at / kCellWidth * kCellWidth;
+    mvchgat(row, static_cast<int>(cell), kCellWidth - 2, A_BOLD, kDeadColour, nullptr);
+  }
+  if (line[1] == ' ')
+    for (std::size_t at = 0; (at = line.find(state_letter(CellState::kDead), at)) != std::string::npos; ++at)
+      mvchgat(row, static_cast<int>(at), 1, A_BOLD, kDeadColour, nullptr);
+}
 
 void draw(const FleetView& v) {
   int rows = 0, cols = 0;
@@ -40,6 +60,7 @@ void draw(const FleetView& v) {
     if (i == 0) attron(A_REVERSE);
     mvaddnstr(static_cast<int>(i), 0, lines[i].c_str(), cols);
     if (i == 0) attroff(A_REVERSE);
+    mark_dead(static_cast<int>(i), lines[i]);
   }
   refresh();
 }
