@@ -145,7 +145,9 @@ void Fleet::start_recorder() {
 void Fleet::await_recorder() {
   if (!recorder_) return;
   // Before the start, the recorder has matched every writer of the lock-step (the volatile
-  // topics; the latched ones are resent to it).
+  // topics; the latched ones are resent to it). It joined before the children started, so each
+  // writer has long discovered it too: a reader's match alone does not say that its writer sends
+  // to it yet.
   const int agents = sc_.robot.agents;
   const std::map<std::string, int> writers = {{comm::topic::kTick, 1},    {comm::topic::kAgentReply, agents},
                                               {comm::topic::kGroup, 2},   {comm::topic::kCentral, 1},
