@@ -181,11 +181,21 @@ dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterLi
 }
 
 dds::DataReader* Participant::reader(dds::Topic* t, Profile p, dds::DataReaderListener* l) {
+  return reader(t, p, l, 0);
+}
+
+dds::DataReader* Participant::reader(dds::Topic* t, Profile p, dds::DataReaderListener* l, int32_t depth) {
   load_qos_profiles();
   dds::DataReaderQos q;
   if (sub_->get_datareader_qos_from_profile(profile_name(p, false), q) != ReturnCode_t::RETCODE_OK)
     throw missing_profile(profile_name(p, false));
   if (p == Profile::kStream) apply_liveliness(q.liveliness(), o_.lease_s);
+  if (depth > 0) {
+    q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    q.history().depth = depth;
+    q.resource_limits().max_samples = std::max(q.resource_limits().max_samples, depth);
+    q.resource_limits().max_samples_per_instance = depth;
+  }
   dds::StatusMask mask = dds::StatusMask::data_available() << dds::StatusMask::subscription_matched()
                          << dds::StatusMask::liveliness_changed();
   auto* r = sub_->create_datareader(t, q, l, mask);

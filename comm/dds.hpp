@@ -177,10 +177,20 @@ class Participant {
     return make_topic(name, ts);
   }
 
+  /// The topic `name` of a type given at run time (comm/raw_type.hpp); takes `type`.
+  eprosima::fastdds::dds::Topic* topic(const std::string& name, eprosima::fastdds::dds::TopicDataType* type) {
+    eprosima::fastdds::dds::TypeSupport ts(type);
+    return make_topic(name, ts);
+  }
+
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* t, Profile p,
                                              eprosima::fastdds::dds::DataWriterListener* l = nullptr);
   eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* t, Profile p,
                                              eprosima::fastdds::dds::DataReaderListener* l);
+  /// A reader of profile `p` whose history keeps the last `depth` samples (a recorder's, deeper
+  /// than what the fleet's writers send in one burst).
+  eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* t, Profile p,
+                                             eprosima::fastdds::dds::DataReaderListener* l, int32_t depth);
   eprosima::fastdds::dds::DomainParticipant* raw() { return dp_; }
   const DdsOptions& options() const { return o_; }
 

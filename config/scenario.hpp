@@ -58,6 +58,7 @@ struct Scenario {
   double tick_hz = 100.0;              ///< Level-1 / plant tick rate, Hz
   bool realtime = false;               ///< pace ticks to the wall clock
   int trace_every = 1;                 ///< write every n-th tick to trace.csv
+  std::string record = "all";          ///< run.mcap: "all" topics, "plant" (ticks, gates, events), "none"
   double initial_discharge_mAh = 0.0;  ///< battery state at start (both groups), mAh
   /// End the run once the speed has stayed more than this many percent below its reference
   /// for 5 s after having reached it (0: never; the battery experiment runs until then).
@@ -128,6 +129,7 @@ std::vector<FieldInfo> field_table();
 //   --duration S      -> duration_s
 //   --tick-hz HZ      -> tick_hz
 //   --trace-every N   -> trace_every
+//   --record WHAT     -> record
 //   --speed MPS       -> set_speed(): speed_mps of every segment that is not a stop
 // set_field() also takes the struct's paths robot.agents, robot.gross_mass_kg and robot.motor
 // for those three. Call Scenario::validate() once all values are set (the rules that tie

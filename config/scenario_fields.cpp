@@ -47,6 +47,9 @@ Table<S> run_fields() {
       integer<S>(
           "trace_every", [](auto& s) -> auto& { return s.trace_every; }, closed(1, 1e6),
           "write every n-th tick to trace.csv"),
+      text<S>(
+          "record", [](auto& s) -> auto& { return s.record; }, {"all", "plant", "none"},
+          "run.mcap: all (every topic), plant (ticks, fault gates, membership, control, ready) or none"),
       real<S>(
           "stop_below_speed_pct", [](auto& s) -> auto& { return s.stop_below_speed_pct; },
           Range{0, 100, false, true, false, 1}, "%",

@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|level2|experiment|bench|kill|restart|top`).
+// dispatches (`maptr run|level2|experiment|bench|kill|restart|top|replay|plot`).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -7,6 +7,7 @@
 #include "deploy/cli/fleet_signal.hpp"
 #include "deploy/cli/level2_command.hpp"
 #include "deploy/cli/paths.hpp"
+#include "deploy/cli/record_commands.hpp"
 #include "deploy/cli/run_command.hpp"
 #include "deploy/cli/study_commands.hpp"
 #include "deploy/cli/top_command.hpp"
@@ -29,6 +30,10 @@ int main(int argc, char** argv) {
   auto* kill = add_signal_command(app, "kill", kill_args);
   auto* restart = add_signal_command(app, "restart", restart_args);
   auto* top = add_top_command(app, top_args);
+  ReplayArgs replay_args;
+  PlotArgs plot_args;
+  auto* replay = add_replay_command(app, replay_args);
+  auto* plot = add_plot_command(app, plot_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -46,6 +51,8 @@ int main(int argc, char** argv) {
     if (kill->parsed()) return cmd_signal("kill", kill_args);
     if (restart->parsed()) return cmd_signal("restart", restart_args);
     if (top->parsed()) return cmd_top(top_args);
+    if (replay->parsed()) return cmd_replay(replay_args);
+    if (plot->parsed()) return cmd_plot(plot_args);
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 1;

@@ -91,6 +91,7 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--external", a.external, "an agent you start yourself (the launcher prints the command)");
   run->add_option("--transport", a.transport, "data transport: shm, udp or auto (shm up to 64 agents)")
       ->check(CLI::IsMember({"auto", "shm", "udp"}));
+  run->add_option("--record", a.record, "what run.mcap records: all (default), plant or none");
   run->add_flag("--quiet", a.quiet, "no progress lines");
   return run;
 }
@@ -106,7 +107,7 @@ Scenario scenario_from(const RunArgs& a) {
       {"--agents", "agents", &RunArgs::agents},          {"--gross-kg", "gross_mass_kg", &RunArgs::gross_kg},
       {"--motor", "motor", &RunArgs::motor},             {"--mode", "mode", &RunArgs::mode},
       {"--duration", "duration_s", &RunArgs::duration},  {"--tick-hz", "tick_hz", &RunArgs::tick_hz},
-      {"--trace-every", "trace_every", &RunArgs::trace_every}};
+      {"--trace-every", "trace_every", &RunArgs::trace_every}, {"--record", "record", &RunArgs::record}};
   Scenario s = config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
   for (const auto& o : kOverrides)
     if (!(a.*o.value).empty()) config::set_field(s, o.path, a.*o.value, o.option);
@@ -155,6 +156,8 @@ int cmd_run(const RunArgs& a, const std::string& bin_dir) {
   }
   std::cout << human_summary(summary);
   std::cout << "results     " << o.run_dir << "/summary.json, trace.csv, logs/\n";
+  if (o.scenario.record != "none") std::cout << "recording   " << o.run_dir << "/run.mcap (maptr replay RUN)\n";
+  if (std::filesystem::exists(o.run_dir + "/run.png")) std::cout << "picture     " << o.run_dir << "/run.png\n";
   const std::string st = summary.value("status", "");
   return st == "ok" ? kExitOk : (st.rfind("degraded", 0) == 0 ? kExitDegraded : kExitFailed);
 }

@@ -88,6 +88,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
       p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched);
   w_control_ = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
   p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &gates_);
+  start_recorder();
   make_children();
   t_launch_ = Clock::now();
 }
@@ -127,6 +128,43 @@ void Fleet::make_children() {
       const std::string n = config::agent_name(s, j);
       add(n, "maptr_agent", {"--id", n}, ChildKind::kAgent, s, static_cast<uint16_t>(j));
     }
+}
+
+void Fleet::start_recorder() {
+  const auto scope = recorder::parse_scope(sc_.record);
+  if (scope == recorder::Scope::kNone) return;
+  // The recorder's participant takes the launcher's id in the second id window: no process of
+  // the fleet ever has it (comm/fleet_ids.hpp).
+  comm::DdsOptions o = dds_;
+  const int id = comm::fleet_stride(sc_.robot.agents) + comm::kLauncherParticipantId;
+  o.participant_id = id <= comm::rtps_max_participant_id(o_.domain) ? id : -1;
+  recorder_id_ = o.participant_id;
+  recorder_ = std::make_unique<recorder::Recorder>(o, o_.run_dir + "/run.mcap", scope, sc_.robot.agents);
+}
+
+void Fleet::await_recorder() {
+  if (!recorder_) return;
+  // Before the start, the recorder has matched every writer of the lock-step (the volatile
+  // topics; the latched ones are resent to it). It joined before the children started, so each
+  // writer has long discovered it too: a reader's match alone does not say that its writer sends
+  // to it yet.
+  const int agents = sc_.robot.agents;
+  const std::map<std::string, int> writers = {{comm::topic::kTick, 1},    {comm::topic::kAgentReply, agents},
+                                              {comm::topic::kGroup, 2},   {comm::topic::kCentral, 1},
+                                              {comm::topic::kControl, 1}, {comm::topic::kMembership, 1}};
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(cfg_.discovery_timeout_s(agents)));
+  if (!recorder_->wait_matched(writers, deadline))
+    log_.warn("recorder: not every writer matched before the start ({}); run.mcap misses their first samples",
+              recorder_->missing());
+}
+
+void Fleet::stop_recorder() {
+  if (!recorder_) return;
+  recorder_->stop();
+  std::string counts;
+  for (const auto& [topic, n] : recorder_->counts()) counts += " " + topic + " " + std::to_string(n);
+  log_.info("recorded run.mcap:{}", counts);
 }
 
 void Fleet::write_fleet() const {
@@ -225,6 +263,7 @@ bool Fleet::discover() {
 }
 
 void Fleet::start_run() {
+  await_recorder();
   log_.info("all {} processes matched after {:.2f} s", kids_.size(), rec_.discovery_s);
   if (o_.progress)
     std::fprintf(stderr, "maptr: all %zu processes matched in %.2f s; starting\n", kids_.size(),
@@ -243,10 +282,11 @@ void Fleet::end() {
   wait_all(kids_, cfg_.end_term_s, reap_expected);
   signal_all(kids_, SIGKILL);
   wait_all(kids_, cfg_.end_kill_s, reap_expected);
+  stop_recorder();
   fifo_.reset();
   participant_.reset();
   ds_->stop(cfg_.discovery_term_s);  // the discovery server goes last
-  clean_shm_after_run(o_.domain, ids_.highest(), ds_->port(), log_);
+  clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_id_), ds_->port(), log_);
 }
 
 nlohmann::json Fleet::summary() {

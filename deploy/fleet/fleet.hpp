@@ -24,6 +24,7 @@
 #include "deploy/fleet/summary.hpp"
 #include "deploy/fleet/waves.hpp"
 #include "idl/maptrPubSubTypes.h"
+#include "recorder/recorder.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -52,6 +53,9 @@ class Fleet {
  private:
   using Clock = std::chrono::steady_clock;
   void make_children();
+  void start_recorder();
+  void await_recorder();
+  void stop_recorder();
   void write_fleet() const;
   void spawn_child(Child& c);
   void spawn_wave(LaunchWaves::Range r);
@@ -86,6 +90,8 @@ class Fleet {
   comm::Inbox<msg::PlantTick> ticks_{signal_};
   comm::Inbox<msg::FaultGate> gates_{signal_};
   std::unique_ptr<comm::Participant> participant_;
+  std::unique_ptr<recorder::Recorder> recorder_;
+  int recorder_id_ = -1;
   eprosima::fastdds::dds::DataWriter* w_member_ = nullptr;
   eprosima::fastdds::dds::DataWriter* w_control_ = nullptr;
   std::vector<Child> kids_;

@@ -3,6 +3,7 @@
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/fleet.hpp"
+#include "deploy/report/run_plot.hpp"
 
 namespace maptr::deploy {
 
@@ -28,7 +29,10 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   f.run();
   // End every process, then the discovery server; remove the fleet's shared-memory ports.
   f.end();
-  return f.summary();
+  nlohmann::json s = f.summary();
+  // The picture of the run (run.png), from the files just written.
+  report::draw_run_plot(o.run_dir);
+  return s;
 }
 
 }  // namespace maptr::deploy

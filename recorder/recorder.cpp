@@ -1,0 +1,164 @@
+#include "recorder/recorder.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "idl/idl_text.hpp"
+
+namespace maptr::recorder {
+
+namespace dds = eprosima::fastdds::dds;
+
+namespace {
+/// Reader history: this many samples per writer of a topic, at least kMinDepth.
+constexpr int32_t kSamplesPerWriter = 8;
+constexpr int32_t kMinDepth = 256;
+/// Writers of the fleet besides its agents (plant, central, two groups, launcher).
+constexpr int32_t kOtherWriters = 5;
+constexpr const char* kLibrary = "maptr recorder";
+
+uint64_t now_ns() {
+  return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                   std::chrono::system_clock::now().time_since_epoch())
+                                   .count());
+}
+}  // namespace
+
+Scope parse_scope(const std::string& text) {
+  if (text == "all") return Scope::kAll;
+  if (text == "plant") return Scope::kPlant;
+  if (text == "none") return Scope::kNone;
+  throw std::invalid_argument("record = " + text + ": must be all, plant or none");
+}
+
+std::vector<comm::FleetTopic> recorded_topics(Scope scope) {
+  std::vector<comm::FleetTopic> out;
+  for (const auto& t : comm::fleet_topics())
+    if (scope == Scope::kAll ||
+        (scope == Scope::kPlant && (t.from_plant || t.profile == comm::Profile::kLatched)))
+      out.push_back(t);
+  return out;
+}
+
+int32_t recorder_depth(int agents) {
+  return std::max(kMinDepth, kSamplesPerWriter * (agents + kOtherWriters));
+}
+
+/// A reader's listener: takes every sample at once and hands it to the recorder.
+class Recorder::Tap : public dds::DataReaderListener {
+ public:
+  Tap(Recorder& r, uint16_t channel) : r_(r), channel_(channel) {}
+  void on_data_available(dds::DataReader* reader) override {
+    comm::RawSample s;
+    dds::SampleInfo info;
+    while (reader->take_next_sample(&s, &info) == ReturnCode_t::RETCODE_OK)
+      if (info.valid_data) r_.push(channel_, info.source_timestamp, std::move(s.bytes));
+  }
+  void on_subscription_matched(dds::DataReader*, const dds::SubscriptionMatchedStatus& s) override {
+    matched_.store(s.current_count);
+  }
+  int matched() const { return matched_.load(); }
+
+ private:
+  Recorder& r_;
+  uint16_t channel_;
+  std::atomic<int> matched_{0};
+};
+
+Recorder::Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents)
+    : topics_(recorded_topics(scope)) {
+  file_ = std::make_unique<records::mcap::Writer>(path, "", kLibrary);
+  std::map<std::string, uint16_t> schema_of;
+  for (const auto& t : topics_) {
+    if (!schema_of.count(t.type_name))
+      schema_of[t.type_name] = file_->add_schema(t.type_name, "omgidl", msg::idl_text());
+    file_->add_channel(schema_of[t.type_name], t.topic, "cdr");
+  }
+  counts_.assign(topics_.size(), 0);
+  sequence_.assign(topics_.size(), 0);
+  writer_ = std::thread([this] { write_loop(); });
+  participant_ = std::make_unique<comm::Participant>("recorder", o);
+  for (std::size_t i = 0; i < topics_.size(); ++i) {
+    const auto& t = topics_[i];
+    taps_.push_back(std::make_unique<Tap>(*this, static_cast<uint16_t>(i)));
+    auto* topic = participant_->topic(t.topic, new comm::RawType(t.type_name, t.max_size));
+    participant_->reader(topic, t.profile, taps_.back().get(), recorder_depth(agents));
+  }
+}
+
+Recorder::~Recorder() {
+  try {
+    stop();
+  } catch (...) {
+  }
+}
+
+void Recorder::push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes) {
+  {
+    std::lock_guard<std::mutex> g(m_);
+    const uint64_t publish_ns = static_cast<uint64_t>(source.seconds()) * 1000000000ull + source.nanosec();
+    // The log time is taken under the lock: log times rise in file order.
+    queue_.push_back({channel, now_ns(), publish_ns, std::move(bytes)});
+    ++counts_[channel];
+  }
+  cv_.notify_one();
+}
+
+void Recorder::write_loop() {
+  std::unique_lock<std::mutex> lk(m_);
+  for (;;) {
+    cv_.wait(lk, [this] { return stopping_ || !queue_.empty(); });
+    std::deque<Pending> batch;
+    batch.swap(queue_);
+    const bool last = stopping_;
+    lk.unlock();
+    for (auto& p : batch) {
+      records::mcap::Message m;
+      m.channel_id = p.channel;
+      m.sequence = ++sequence_[p.channel];
+      m.log_time_ns = p.log_ns;
+      m.publish_time_ns = p.publish_ns;
+      m.data = std::move(p.bytes);
+      file_->write(m);
+    }
+    lk.lock();
+    if (last && queue_.empty()) return;
+  }
+}
+
+bool Recorder::wait_matched(const std::map<std::string, int>& writers,
+                            std::chrono::steady_clock::time_point deadline) {
+  for (;;) {
+    missing_.clear();
+    for (std::size_t i = 0; i < topics_.size(); ++i) {
+      const auto it = writers.find(topics_[i].topic);
+      if (it != writers.end() && taps_[i]->matched() < it->second)
+        missing_ += (missing_.empty() ? "" : ", ") + topics_[i].topic + " " +
+                    std::to_string(taps_[i]->matched()) + "/" + std::to_string(it->second);
+    }
+    if (missing_.empty()) return true;
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+void Recorder::stop() {
+  if (!participant_ && !writer_.joinable()) return;
+  participant_.reset();  // no callback runs after this
+  {
+    std::lock_guard<std::mutex> g(m_);
+    stopping_ = true;
+  }
+  cv_.notify_one();
+  if (writer_.joinable()) writer_.join();
+  file_->close();
+}
+
+std::map<std::string, uint64_t> Recorder::counts() const {
+  std::lock_guard<std::mutex> g(m_);
+  std::map<std::string, uint64_t> out;
+  for (std::size_t i = 0; i < topics_.size(); ++i) out[topics_[i].topic] = counts_[i];
+  return out;
+}
+
+}  // namespace maptr::recorder

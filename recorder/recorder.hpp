@@ -1,0 +1,85 @@
+#pragma once
+// The fleet's recorder: a read-only DDS participant whose readers take every sample on the
+// fleet's topics as raw CDR (comm/raw_type.hpp) and a thread that writes them to run.mcap
+// (records/mcap.hpp), each with its log time (wall clock when taken, ns since the Unix epoch)
+// and its publish time (the writer's source timestamp). The readers keep a history deeper than
+// one tick's burst of replies and hand samples over at once, so the recorder neither slows the
+// fleet's reliable writers nor loses samples; the file is written off the DDS threads.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "comm/dds.hpp"
+#include "comm/raw_type.hpp"
+#include "records/mcap.hpp"
+
+namespace maptr::recorder {
+
+/// What a recording holds: every topic, the plant's (ticks, fault gates) with the fleet's
+/// events (membership, control, ready), or nothing.
+enum class Scope { kAll, kPlant, kNone };
+
+/// "all" | "plant" | "none" (the scenario's `record` field); throws std::invalid_argument.
+Scope parse_scope(const std::string& text);
+
+/// The topics a recording of `scope` holds.
+std::vector<comm::FleetTopic> recorded_topics(Scope scope);
+
+/// Samples each of a fleet of `agents` agents' writers may send before the recorder takes
+/// them: the history depth of its readers.
+int32_t recorder_depth(int agents);
+
+class Recorder {
+ public:
+  /// Joins the domain of `o` (a participant of its own) and opens `path`. Throws
+  /// records::RecordError when the file cannot be written, std::runtime_error on DDS errors.
+  Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents);
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
+  /// Waits until each topic in `writers` has matched at least that many writers; false at the
+  /// deadline (the topics that lack writers are then in missing()).
+  bool wait_matched(const std::map<std::string, int>& writers,
+                    std::chrono::steady_clock::time_point deadline);
+  std::string missing() const { return missing_; }
+  /// Leaves the domain, writes what is left and closes the file (once).
+  void stop();
+  /// Messages recorded per topic so far.
+  std::map<std::string, uint64_t> counts() const;
+
+ private:
+  /// One sample taken from DDS, waiting for the file.
+  struct Pending {
+    uint16_t channel;
+    uint64_t log_ns, publish_ns;
+    std::string bytes;
+  };
+  class Tap;
+  void push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes);
+  void write_loop();
+
+  std::vector<comm::FleetTopic> topics_;
+  std::unique_ptr<records::mcap::Writer> file_;
+  std::vector<std::unique_ptr<Tap>> taps_;
+  std::unique_ptr<comm::Participant> participant_;
+  mutable std::mutex m_;
+  std::condition_variable cv_;
+  std::deque<Pending> queue_;
+  std::vector<uint64_t> counts_;
+  std::vector<uint32_t> sequence_;
+  bool stopping_ = false;
+  std::thread writer_;
+  std::string missing_;
+};
+
+}  // namespace maptr::recorder

@@ -1,0 +1,34 @@
+#pragma once
+// Replay of a recording: every message of a run.mcap published again on a DDS domain, on its
+// recorded topic with its recorded type name and the fleet's QoS profile for that topic, at
+// the pace of its log times divided by `rate`. The bytes sent are the recorded CDR samples, so
+// any reader of the fleet's types (maptr top, a test, a DDS tool) sees the run as if it were live.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "comm/dds.hpp"
+#include "records/mcap.hpp"
+
+namespace maptr::recorder {
+
+struct ReplayOptions {
+  double rate = 1.0;           ///< X times the recorded pace (> 0)
+  double wait_reader_s = 5.0;  ///< before the first message, wait this long for a reader of the ticks
+  double linger_s = 2.0;       ///< after the last, wait this long for readers to acknowledge
+};
+
+/// What a replay did.
+struct ReplayResult {
+  uint64_t messages = 0;
+  double wall_s = 0;      ///< from the first message to the last
+  double recorded_s = 0;  ///< log time of the last message minus the first's
+};
+
+/// Publishes `file` on the domain of `o`; `progress` (if set) is called about once a second
+/// with the messages sent so far; `stop` ends the replay early.
+ReplayResult replay(const records::mcap::File& file, const comm::DdsOptions& o, const ReplayOptions& r,
+                    const std::atomic<bool>& stop, const std::function<void(uint64_t)>& progress = {});
+
+}  // namespace maptr::recorder

@@ -1,0 +1,167 @@
+// run.mcap of a 16-agent 10 s run: read back in C++ and counted against what the fleet
+// published, checked with MCAP's TypeScript reader and Foxglove's OMG IDL deserialiser (when
+// node is present), and replayed on a DDS domain to a reader of the fleet's types.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+
+#include "comm/dds.hpp"
+#include "fleet_runner.hpp"
+#include "idl/maptrPubSubTypes.h"
+#include "records/mcap.hpp"
+#include "records/trace.hpp"
+
+using namespace maptr;
+using maptr::testing::CliResult;
+using maptr::testing::TempDir;
+
+namespace {
+
+constexpr int kAgents = 16;
+
+/// The run every test here reads (made once).
+struct RecordedRun {
+  TempDir dir;
+  std::string out = dir.path() + "/run";
+  CliResult result;
+};
+
+RecordedRun& recorded() {
+  static RecordedRun run;
+  static const bool made = [] {
+    run.result = maptr::testing::run_cli(
+        maptr::testing::run_args(run.out, {"--agents", std::to_string(kAgents), "--duration", "10"}), run.out,
+        600);
+    return true;
+  }();
+  (void)made;
+  return run;
+}
+
+msg::PlantTick decode_tick(const std::string& bytes) {
+  msg::PlantTickPubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(bytes.size()));
+  std::memcpy(payload.data, bytes.data(), bytes.size());
+  payload.length = static_cast<uint32_t>(bytes.size());
+  msg::PlantTick t;
+  EXPECT_TRUE(type.deserialize(&payload, &t));
+  return t;
+}
+
+std::map<std::string, std::vector<const records::mcap::Message*>> by_topic(const records::mcap::File& f) {
+  std::map<std::string, std::vector<const records::mcap::Message*>> out;
+  for (const auto& m : f.messages) out[f.channels.at(m.channel_id).topic].push_back(&m);
+  return out;
+}
+
+}  // namespace
+
+TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
+  auto& run = recorded();
+  ASSERT_EQ(run.result.exit_code, 0) << run.result.output;
+  const auto f = records::mcap::read_file(run.out + "/run.mcap");
+  const auto topics = by_topic(f);
+  ASSERT_EQ(f.channels.size(), 8u);
+  for (const auto& [id, ch] : f.channels) {
+    EXPECT_EQ(ch.message_encoding, "cdr");
+    EXPECT_EQ(f.schemas.at(ch.schema_id).encoding, "omgidl");
+    EXPECT_EQ(f.schemas.at(ch.schema_id).name.rfind("maptr::msg::", 0), 0u)
+        << f.schemas.at(ch.schema_id).name;
+  }
+  const double ticks = run.result.summary.value("ticks", 0.0);
+  // Ticks 0..ticks: one PlantTick each; every agent, group and central answers all but the last.
+  ASSERT_EQ(topics.at("maptr/tick").size(), static_cast<std::size_t>(ticks) + 1);
+  EXPECT_EQ(topics.at("maptr/agent_reply").size(), static_cast<std::size_t>(ticks) * kAgents);
+  EXPECT_EQ(topics.at("maptr/group").size(), static_cast<std::size_t>(ticks) * 2);
+  EXPECT_EQ(topics.at("maptr/central").size(), static_cast<std::size_t>(ticks));
+  EXPECT_EQ(topics.at("maptr/ready").size(), static_cast<std::size_t>(kAgents) + 4);
+  std::set<uint64_t> seen;
+  for (const auto* m : topics.at("maptr/tick")) seen.insert(decode_tick(m->data).tick());
+  EXPECT_EQ(seen.size(), static_cast<std::size_t>(ticks) + 1);
+}
+
+TEST(Record, EveryPlantTickEqualsItsTraceRow) {
+  auto& run = recorded();
+  ASSERT_EQ(run.result.exit_code, 0) << run.result.output;
+  const auto f = records::mcap::read_file(run.out + "/run.mcap");
+  std::map<uint64_t, msg::PlantTick> ticks;
+  const auto topics = by_topic(f);
+  for (const auto* m : topics.at("maptr/tick")) {
+    const auto t = decode_tick(m->data);
+    ticks[t.tick()] = t;
+  }
+  const auto rows = records::read_trace(run.out + "/trace.csv");
+  ASSERT_FALSE(rows.empty());
+  for (const auto& r : rows) {
+    const auto it = ticks.find(static_cast<uint64_t>(r.tick));
+    ASSERT_NE(it, ticks.end()) << "tick " << r.tick;
+    const auto& t = it->second;
+    // trace.csv prints 9 significant digits.
+    EXPECT_NEAR(t.t(), r.t_s, 1e-6);
+    EXPECT_NEAR(t.x(), r.x_m, 1e-8 * std::abs(r.x_m) + 1e-9);
+    EXPECT_NEAR(t.v_x(), r.v_x_mps, 1e-8 * std::abs(r.v_x_mps) + 1e-9);
+    EXPECT_NEAR(t.energy_J(), r.energy_J, 1e-8 * std::abs(r.energy_J) + 1e-9);
+    EXPECT_NEAR(t.sides()[0].battery_V(), r.battery_V_L, 1e-8 * r.battery_V_L);
+    EXPECT_EQ(t.sides()[1].n_active(), static_cast<int>(r.n_active_R));
+  }
+}
+
+TEST(Record, McapReaderAndFoxgloveDeserialiserReadTheRun) {
+  if (std::system("command -v node > /dev/null 2>&1 && command -v npm > /dev/null 2>&1") != 0)
+    GTEST_SKIP()
+        << "node or npm not found: the check with @mcap/core and @foxglove/omgidl-serialization is skipped "
+           "(apt-get install nodejs npm to run it)";
+  auto& run = recorded();
+  ASSERT_EQ(run.result.exit_code, 0) << run.result.output;
+  const std::string dir = MAPTR_MCAP_CHECK_DIR;
+  // npm ci once per build tree (the versions of package-lock.json).
+  if (!std::filesystem::exists(dir + "/node_modules/@mcap/core")) {
+    ASSERT_EQ(std::system(("cd '" + dir + "' && npm ci --no-audit --no-fund > npm-ci.log 2>&1").c_str()), 0)
+        << "npm ci failed; see " << dir << "/npm-ci.log";
+  }
+  const std::string log = dir + "/check.log";
+  const int rc =
+      std::system(("node '" + dir + "/check_run_mcap.mjs' '" + run.out + "' > '" + log + "' 2>&1").c_str());
+  std::ifstream in(log);
+  const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::cout << out;
+  EXPECT_EQ(rc, 0) << out;
+}
+
+TEST(Record, AReplayIsSeenLiveByAReaderOfTheFleetsTypes) {
+  auto& run = recorded();
+  ASSERT_EQ(run.result.exit_code, 0) << run.result.output;
+  const auto f = records::mcap::read_file(run.out + "/run.mcap");
+  const std::size_t recorded_ticks = by_topic(f).at("maptr/tick").size();
+  comm::DdsOptions o;
+  o.domain = maptr::testing::private_domain();
+  comm::Signal signal;
+  comm::Inbox<msg::PlantTick> ticks(signal);
+  {
+    comm::Participant p("replay-reader", o);
+    p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &ticks, 4096);
+    // The replay waits for this reader before its first message.
+    const auto r = maptr::testing::run_cli({"replay", run.out, "--rate", "4", "--domain",
+                                            std::to_string(o.domain), "--wait-reader", "30", "--quiet"},
+                                           run.out, 300);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  const auto got = ticks.drain();
+  ASSERT_EQ(got.size(), recorded_ticks);
+  // The last tick ends the run (it has no trace row: the summary holds its figures); the one
+  // before it is the trace's last row.
+  const auto& last = got.back().first;
+  EXPECT_EQ(last.run_state(), msg::RUN_FINISHED);
+  EXPECT_NEAR(last.t(), run.result.summary.value("sim_time_s", 0.0), 1e-9);
+  EXPECT_NEAR(last.energy_J(), run.result.summary.value("energy_J", 0.0), 1e-9);
+  const auto rows = records::read_trace(run.out + "/trace.csv");
+  const auto& before = got[got.size() - 2].first;
+  EXPECT_EQ(before.tick(), static_cast<uint64_t>(rows.back().tick));
+  EXPECT_NEAR(before.energy_J(), rows.back().energy_J, 1e-8 * rows.back().energy_J);
+}

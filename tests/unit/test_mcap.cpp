@@ -1,0 +1,121 @@
+// records/mcap: what the writer puts in a file the reader gets back, chunked and indexed, and
+// every CRC guards what it covers.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "records/mcap.hpp"
+
+namespace mcap = maptr::records::mcap;
+using maptr::records::RecordError;
+
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("maptr_test_" + std::to_string(getpid()) + "_" + name))
+      .string();
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// Three channels on two schemas; message i on channel i % 3 at log time 1000 + 10 i ns.
+std::vector<mcap::Message> write_sample(const std::string& path, int n, std::size_t chunk_bytes) {
+  mcap::Writer w(path, "", "maptr test", chunk_bytes);
+  const uint16_t a = w.add_schema("pkg::A", "omgidl", "module pkg { struct A { long x; }; };");
+  const uint16_t b = w.add_schema("pkg::B", "omgidl", "module pkg { struct B { double y; }; };");
+  w.add_channel(a, "t/a", "cdr");
+  w.add_channel(b, "t/b", "cdr");
+  w.add_channel(a, "t/a2", "cdr");
+  std::vector<mcap::Message> sent;
+  for (int i = 0; i < n; ++i) {
+    mcap::Message m;
+    m.channel_id = static_cast<uint16_t>(i % 3);
+    m.sequence = static_cast<uint32_t>(i / 3);
+    m.log_time_ns = 1000 + 10 * static_cast<uint64_t>(i);
+    m.publish_time_ns = m.log_time_ns - 5;
+    m.data =
+        std::string("\x00\x01\x00\x00", 4) + std::string(static_cast<std::size_t>(i % 7), char('a' + i % 26));
+    w.write(m);
+    sent.push_back(m);
+  }
+  w.close();
+  return sent;
+}
+
+}  // namespace
+
+TEST(Mcap, Crc32MatchesTheStandardCheckValue) {
+  // CRC-32/ISO-HDLC of "123456789" is 0xCBF43926; continuing a CRC equals one pass.
+  EXPECT_EQ(mcap::crc32("123456789"), 0xCBF43926u);
+  EXPECT_EQ(mcap::crc32("6789", mcap::crc32("12345")), 0xCBF43926u);
+}
+
+TEST(Mcap, MessagesComeBackInOrderAcrossChunksWithTheirIndexes) {
+  const std::string path = temp_path("roundtrip.mcap");
+  const auto sent = write_sample(path, 500, 1024);  // about 20 messages a chunk
+  const mcap::File f = mcap::read_file(path);
+  ASSERT_EQ(f.messages.size(), sent.size());
+  for (std::size_t i = 0; i < sent.size(); ++i) {
+    EXPECT_EQ(f.messages[i].channel_id, sent[i].channel_id);
+    EXPECT_EQ(f.messages[i].sequence, sent[i].sequence);
+    EXPECT_EQ(f.messages[i].log_time_ns, sent[i].log_time_ns);
+    EXPECT_EQ(f.messages[i].publish_time_ns, sent[i].publish_time_ns);
+    EXPECT_EQ(f.messages[i].data, sent[i].data);
+  }
+  EXPECT_EQ(f.library, "maptr test");
+  ASSERT_EQ(f.schemas.size(), 2u);
+  EXPECT_EQ(f.schemas.at(2).name, "pkg::B");
+  EXPECT_EQ(f.schemas.at(2).encoding, "omgidl");
+  ASSERT_EQ(f.channels.size(), 3u);
+  EXPECT_EQ(f.channels.at(2).topic, "t/a2");
+  EXPECT_EQ(f.channels.at(2).schema_id, 1);
+  EXPECT_EQ(f.channels.at(1).message_encoding, "cdr");
+  EXPECT_GT(f.statistics.chunk_count, 10u);
+  EXPECT_EQ(f.statistics.message_count, 500u);
+  EXPECT_EQ(f.statistics.channel_message_counts.at(0), 167u);  // i % 3 == 0 for 167 of 0..499
+  EXPECT_EQ(f.statistics.message_start_ns, 1000u);
+  EXPECT_EQ(f.statistics.message_end_ns, 1000u + 10u * 499u);
+  std::filesystem::remove(path);
+}
+
+TEST(Mcap, AnEmptyRecordingIsValidWithZeroCounts) {
+  const std::string path = temp_path("empty.mcap");
+  write_sample(path, 0, 1024);
+  const mcap::File f = mcap::read_file(path);
+  EXPECT_TRUE(f.messages.empty());
+  EXPECT_EQ(f.statistics.chunk_count, 0u);
+  EXPECT_EQ(f.statistics.channel_message_counts.at(1), 0u);
+  std::filesystem::remove(path);
+}
+
+TEST(Mcap, ACorruptByteInAChunkIsCaughtByItsCrc) {
+  const std::string path = temp_path("corrupt.mcap");
+  write_sample(path, 50, 1u << 20);
+  std::string bytes = slurp(path);
+  // Message 13 carries "nnnnnn" (13 % 26 is n, 13 % 7 is 6).
+  const std::size_t at = bytes.find(std::string("\x00\x01\x00\x00", 4) + "nnnnnn");
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 5] = 'y';
+  std::ofstream(path, std::ios::binary) << bytes;
+  try {
+    mcap::read_file(path);
+    FAIL() << "a corrupt chunk was read";
+  } catch (const RecordError& e) {
+    EXPECT_NE(std::string(e.what()).find("CRC"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(Mcap, ATruncatedFileIsRefused) {
+  const std::string path = temp_path("truncated.mcap");
+  write_sample(path, 50, 1u << 20);
+  const std::string bytes = slurp(path);
+  std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  EXPECT_THROW(mcap::read_file(path), RecordError);
+  std::filesystem::remove(path);
+}
