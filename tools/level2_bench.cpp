@@ -76,8 +76,14 @@ int main(int argc, char** argv) {
       cpu.push_back(thread_cpu_ms() - c0);
       times.push_back(r.solve_time_ms);
       iterations += r.iterations;
-      const int oracle = exhaustive_level2(p).n_active;
-      differ += r.n_active != oracle;
+      const auto oracle = exhaustive_level2(p);
+      if (r.n_active != oracle.n_active) {
+        ++differ;
+        std::printf(
+            "  differ: %s v %.3f side %d: solver %d (relaxed %.4f, status %d, J %.7f), oracle %d (J %.7f)\n",
+            f.name.c_str(), p.v_x, p.side, r.n_active, r.n_relaxed, r.ipopt_status, r.objective,
+            oracle.n_active, oracle.objective);
+      }
       ++total;
     }
     all.insert(all.end(), times.begin(), times.end());
