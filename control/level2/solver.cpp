@@ -203,7 +203,12 @@ Level2Result Level2Solver::solve(const Level2Problem& p) {
     bool found = false;
     const int k_lo = std::max(1, static_cast<int>(std::floor(x - kIntegerWiden)));
     const int k_hi = std::min(live, static_cast<int>(std::ceil(x + kIntegerWiden)));
-    for (int k = k_lo; k <= k_hi; ++k) {
+    // Every live agent is a candidate too: when the body is above its reference the speed loop
+    // brakes, J is flat near 0 for small n and Ipopt can stop at n = 1 below a better n = live.
+    std::vector<int> candidates;
+    for (int k = k_lo; k <= k_hi; ++k) candidates.push_back(k);
+    if (k_hi < live) candidates.push_back(live);
+    for (int k : candidates) {
       if (!level2_feasible(p, k)) continue;
       const double j = level2_objective(p, k);
       if (!found || j > res.objective) {  // strict: ties keep the smaller n
