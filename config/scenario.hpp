@@ -34,6 +34,7 @@ constexpr std::size_t kMaxQuotedChars = 80;
 struct ControlConfig {
   model::PidParams pid;
   double level2_period_s = 1.0;    ///< Level-2 decision period, s (paper: 1 Hz)
+  double level2_defer_s = 0.1;     ///< s from a Level-2 decision's inputs (tick k) to its use
   int horizon = 10;                ///< Level-2 horizon, steps (paper: 10)
   double horizon_step_s = 0.1;     ///< Level-2 horizon step, s
   double t_on_s = 100.0;           ///< Level-3 period T_ON, s

@@ -140,6 +140,11 @@ Table<S> control_fields() {
       real<S>(
           "control.level2_period_s", [](auto& s) -> auto& { return s.control.level2_period_s; },
           above(0, 1e6), "s", "Level-2 decision period (at least one tick)"),
+      real<S>(
+          "control.level2_defer_s", [](auto& s) -> auto& { return s.control.level2_defer_s; }, closed(0, 60),
+          "s",
+          "a Level-2 decision uses tick k's inputs and is applied at tick k + round(this / dt), solved "
+          "meanwhile on the group's worker thread (0: in tick k)"),
       integer<S>(
           "control.horizon", [](auto& s) -> auto& { return s.control.horizon; }, closed(1, 1000),
           "Level-2 horizon, steps"),

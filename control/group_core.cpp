@@ -15,8 +15,14 @@ constexpr double kTimeSlackS = 1e-9;
 int count(const std::vector<uint8_t>& m) { return static_cast<int>(std::count(m.begin(), m.end(), 1)); }
 }  // namespace
 
-GroupCore::GroupCore(int side, const GroupConfig& config, std::string ledger_path)
-    : side_(side), c_(config), ledger_path_(std::move(ledger_path)), ledger_(config.robot.per_side()) {
+GroupCore::GroupCore(int side, const GroupConfig& config, std::string ledger_path, Level2Runner* runner)
+    : side_(side),
+      c_(config),
+      ledger_path_(std::move(ledger_path)),
+      ledger_(config.robot.per_side()),
+      own_runner_(runner ? nullptr : std::make_unique<InlineLevel2Runner>(config.oracle)),
+      runner_(runner ? runner : own_runner_.get()),
+      defer_ticks_(std::llround(config.level2_defer_s / config.dt_s)) {
   if (!ledger_path_.empty()) resumed_ = ledger_.load(ledger_path_, config.robot.per_side());
 }
 
@@ -32,7 +38,7 @@ bool GroupCore::update_cruise(const GroupInput& in) {
   return cruise_;
 }
 
-void GroupCore::solve_level2(const GroupInput& in, GroupDecision& d, int& target) {
+void GroupCore::start_level2(const GroupInput& in, GroupDecision& d, int& target) {
   Level2Problem p;
   p.robot = c_.robot;
   p.side = side_;
@@ -45,34 +51,49 @@ void GroupCore::solve_level2(const GroupInput& in, GroupDecision& d, int& target
   p.battery_V = in.battery_V;
   p.horizon = c_.horizon;
   p.step_s = c_.horizon_step_s;
-  if (p.live <= 0) {
+  if (p.live <= 0) {  // nothing to solve: decided at once
     target = 0;
     d.level2_status = kL2Infeasible;
+    ++ledger_.decisions;
     return;
   }
-  const Level2Result r = solver_.solve(p);
+  runner_->start(p);
+  pending_ = Pending{in.tick + defer_ticks_, in.t, in.n_other, false};
+}
+
+void GroupCore::apply_level2(GroupDecision& d, int& target) {
+  const Level2Outcome o = runner_->finish();
+  const Pending p = *pending_;
+  pending_.reset();
+  if (p.stale) return;
+  const Level2Result& r = o.result;
   d.level2_relaxed = r.n_relaxed;
   d.level2_ran = true;
+  d.level2_t_s = p.t_s;
+  d.level2_n_other = p.n_other;
   d.ipopt_n_active = r.n_active;
   d.solve_time_ms = r.solve_time_ms;
   d.level2_status = !r.feasible ? kL2Infeasible : r.ipopt_status >= 0 ? kL2Ok : kL2Failed;
+  d.oracle_n_active = o.oracle_n_active;
   target = r.feasible ? r.n_active : d.n_live;
-  if (c_.oracle) d.oracle_n_active = exhaustive_level2(p).n_active;
+  ++ledger_.decisions;
 }
 
 int GroupCore::decide_count(const GroupInput& in, bool cruising, GroupDecision& d, bool& realloc,
                             const std::vector<uint8_t>& next) {
-  int target = ledger_.n_target;
+  // No decision yet (n_target 0, e.g. cruising from the start): every live agent runs until one is applied.
+  int target = ledger_.n_target > 0 ? ledger_.n_target : d.n_live;
   if (!cruising) {
     // Accelerating, braking or recovering: every live agent helps.
     target = d.n_live;
     realloc = next != in.live;
     last_l2_t_ = kNeverS;  // decide as soon as cruise is reached
-  } else if (in.t - last_l2_t_ >= c_.level2_period_s - kTimeSlackS) {
+    if (pending_) pending_->stale = true;
+  } else if (!pending_ && in.t - last_l2_t_ >= c_.level2_period_s - kTimeSlackS) {
     last_l2_t_ = in.t;
-    solve_level2(in, d, target);
-    ++ledger_.decisions;
+    start_level2(in, d, target);
   }
+  if (pending_ && in.tick >= pending_->apply_tick) apply_level2(d, target);
   return std::min(target, d.n_live);
 }
 

@@ -4,7 +4,10 @@
 //   mode ec (energy-conscious):
 //     - while the side's wheel speed is far from its reference (relative error above
 //       cruise_leave, until it is back within cruise_enter) every live agent runs;
-//     - in cruise, Level 2 (Level2Solver) chooses the count N_a every level2_period_s [s];
+//     - in cruise, Level 2 chooses the count N_a every level2_period_s [s]: the problem is
+//       built from tick k's inputs and handed to a Level2Runner; its outcome is applied at tick
+//       k + d, d = round(level2_defer_s / dt_s) (d = 0: in tick k). A decision still pending
+//       when cruise ends is dropped; the next starts only after the last one was applied;
 //     - Level 3 (allocate() on the wear Ledger) chooses which agents every t_on_s [s], whenever
 //       N_a or the number of active agents changes, and when an active agent reaches the
 //       thermal limit thermal_limit_s [s] of continuous operation.
@@ -12,10 +15,12 @@
 // Level-2 period, and loaded at construction: a restarted controller resumes it.
 // Pure: explicit time (GroupInput::t), no DDS, no clock (except the solver's diagnostic timing).
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "control/level2/solver.hpp"
+#include "control/level2/runner.hpp"
 #include "control/level2/status.hpp"
 #include "control/level3/ledger.hpp"
 #include "model/params.hpp"
@@ -29,6 +34,7 @@ struct GroupConfig {
   GroupMode mode = GroupMode::kEnergyConscious;
   double dt_s = 0.01;              ///< tick period, s
   double level2_period_s = 1.0;    ///< s between Level-2 decisions in cruise
+  double level2_defer_s = 0.0;     ///< s from a decision's inputs (tick k) to its use (tick k + d)
   int horizon = 10;                ///< Level-2 horizon, steps
   double horizon_step_s = 0.1;     ///< Level-2 horizon step, s
   double t_on_s = 100.0;           ///< Level-3 period T_ON, s
@@ -58,15 +64,19 @@ struct GroupDecision {
   double level2_relaxed = 0.0;      ///< the solver's relaxed N_a
   int oracle_n_active = -1;         ///< exhaustive search's N_a (-1: not run)
   double solve_time_ms = 0.0;
-  bool level2_ran = false;  ///< a Level-2 decision was taken at this tick
+  bool level2_ran = false;  ///< a Level-2 decision was applied at this tick
+  double level2_t_s = 0.0;  ///< s, time of the tick whose inputs that decision used
+  int level2_n_other = 0;   ///< the other side's count in those inputs
   int ipopt_n_active = -1;  ///< the solver's integer choice (before the feasibility fallback)
   uint64_t decisions = 0, reallocations = 0;
 };
 
 class GroupCore {
  public:
-  /// side 0 = left, 1 = right; ledger_path "" keeps the ledger in memory only.
-  GroupCore(int side, const GroupConfig& config, std::string ledger_path);
+  /// side 0 = left, 1 = right; ledger_path "" keeps the ledger in memory only. runner solves
+  /// the Level-2 decisions (nullptr: an InlineLevel2Runner of the core's own); it must outlive
+  /// the core.
+  GroupCore(int side, const GroupConfig& config, std::string ledger_path, Level2Runner* runner = nullptr);
   GroupDecision step(const GroupInput& in);
   const Ledger& ledger() const { return ledger_; }
   bool resumed() const { return resumed_; }
@@ -77,13 +87,25 @@ class GroupCore {
   /// Runs Level 2 if in cruise and due; returns the wanted N_a; fills d's Level-2 fields.
   int decide_count(const GroupInput& in, bool cruising, GroupDecision& d, bool& realloc,
                    const std::vector<uint8_t>& next);
-  void solve_level2(const GroupInput& in, GroupDecision& d, int& target);
+  void start_level2(const GroupInput& in, GroupDecision& d, int& target);
+  void apply_level2(GroupDecision& d, int& target);
+
+  /// A decision started and not applied yet.
+  struct Pending {
+    long long apply_tick = 0;
+    double t_s = 0.0;
+    int n_other = 0;
+    bool stale = false;  ///< cruise ended after it started: dropped when it is due
+  };
 
   int side_;
   GroupConfig c_;
   std::string ledger_path_;
   Ledger ledger_;
-  Level2Solver solver_;
+  std::unique_ptr<Level2Runner> own_runner_;
+  Level2Runner* runner_;
+  long long defer_ticks_ = 0;
+  std::optional<Pending> pending_;
   bool resumed_ = false;
   double last_l2_t_ = kNeverS;
   bool cruise_ = false;

@@ -1,5 +1,9 @@
 #include "group/group_node.hpp"
 
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
 #include "comm/follower.hpp"
 #include "comm/side.hpp"
 #include "config/scenario.hpp"
@@ -28,6 +32,7 @@ control::GroupConfig make_config(const config::Scenario& s) {
   c.mode = s.mode == "all" ? control::GroupMode::kAll : control::GroupMode::kEnergyConscious;
   c.dt_s = s.dt();
   c.level2_period_s = s.control.level2_period_s;
+  c.level2_defer_s = s.control.level2_defer_s;
   c.horizon = s.control.horizon;
   c.horizon_step_s = s.control.horizon_step_s;
   c.t_on_s = s.control.t_on_s;
@@ -54,11 +59,11 @@ control::GroupInput group_input(const msg::PlantTick& t, int side) {
 }
 
 /// The Level-2 log record of a decision taken at this tick.
-records::Level2Record level2_record(const control::GroupInput& in, const control::GroupDecision& d) {
+records::Level2Record level2_record(const control::GroupDecision& d) {
   records::Level2Record r;
-  r.t_s = in.t;
+  r.t_s = d.level2_t_s;
   r.n_live = d.n_live;
-  r.n_other = in.n_other;
+  r.n_other = d.level2_n_other;
   r.status = d.level2_status;
   r.relaxed = d.level2_relaxed;
   r.ipopt_n_active = d.ipopt_n_active;
@@ -69,12 +74,31 @@ records::Level2Record level2_record(const control::GroupInput& in, const control
 }
 }  // namespace
 
+std::chrono::milliseconds test_level2_delay() {
+  const char* v = std::getenv(kTestLevel2DelayEnv);
+  if (v == nullptr || *v == '\0') return std::chrono::milliseconds(0);
+  const std::string text(v);
+  std::size_t used = 0;
+  long ms = -1;
+  try {
+    ms = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || ms < 0 || ms > kMaxTestLevel2DelayMs)
+    throw std::invalid_argument(std::string(kTestLevel2DelayEnv) + " = " + text.substr(0, 80) +
+                                ": must be an integer from 0 to " + std::to_string(kMaxTestLevel2DelayMs) +
+                                " (ms)");
+  return std::chrono::milliseconds(ms);
+}
+
 GroupNode::GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<spdlog::logger> log)
     : args_(args),
       side_(side),
       log_(std::move(log)),
-      core_(side, make_config(args.scenario), args.run_dir + "/ledger-" + (side == 0 ? "L" : "R") + ".json") {
-}
+      worker_(args.scenario.control.oracle, test_level2_delay()),
+      core_(side, make_config(args.scenario), args.run_dir + "/ledger-" + (side == 0 ? "L" : "R") + ".json",
+            &worker_) {}
 
 int GroupNode::run() {
   comm::TickFollower follower(args_, msg::NODE_GROUP, log_);
@@ -98,7 +122,7 @@ int GroupNode::run() {
       else
         log_->info("Level 2 feasible again at t={:.2f} s", in.t);
     }
-    if (d.level2_ran && l2) l2.write(level2_record(in, d));
+    if (d.level2_ran && l2) l2.write(level2_record(d));
     msg::GroupStatus st;
     st.tick(t.tick());
     st.side(comm::to_msg_side(side_));
@@ -118,6 +142,9 @@ int GroupNode::run() {
     w_group->write(&st);
   });
   core_.save();
+  log_->info(
+      "Level 2: {} decisions solved on the worker thread, {} of them waited for at the tick they were due",
+      worker_.finished(), worker_.waited());
   log_->info("ledger saved: {} decisions, {} reallocations", core_.ledger().decisions,
              core_.ledger().reallocations);
   return code;

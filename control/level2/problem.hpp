@@ -24,7 +24,7 @@ struct Level2Problem {
   double step_s = 0.1;              ///< s, horizon step (H * step_s = 1 s = the decision period)
   double speed_tolerance = 0.02;    ///< feasible if (1 - tol) * reference can be held
   double approach_time_s = 0.5;     ///< T_c, s, closed-loop time constant of the speed loop
-  double substep_s = 0.01;          ///< s, integration / voltage-update substep (<= step_s)
+  double substep_s = 0.02;          ///< s, integration / voltage-update substep (<= step_s)
   double clamp_smoothing_V = 0.02;  ///< V, width of the smoothed voltage clamp
   double agent_cost = 1e-4;         ///< c, objective units per active agent (tie-break)
 

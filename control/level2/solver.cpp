@@ -8,20 +8,25 @@
 #include <coin/IpTNLP.hpp>
 #include <vector>
 
+#include "control/level2/runner.hpp"
+
 namespace maptr::control {
 namespace {
 
 using Ipopt::Index;
 using Ipopt::Number;
 
-constexpr double kFdStep = 1e-5;      ///< agents, central finite-difference step
-constexpr double kFdHessStep = 1e-3;  ///< agents, second-difference step (noise / h^2 ~ 1e-8)
+constexpr double kFdStep = 1e-3;   ///< agents, step of the objective's three-point stencil
+constexpr double kGFdStep = 1e-5;  ///< agents, central-difference step of the closed-form constraint
 /// Constraint lower bound that Ipopt reads as none (below its nlp_lower_bound_inf, -1e19).
 constexpr double kNoLowerBound = -2e19;
 constexpr double kIntegerWiden =
     1e-3;  ///< agents: a relaxed n* this close to an integer brings in both neighbours
 
 /// The relaxed Level-2 NLP: one variable n, one constraint g(n) = feasibility_voltage(n).
+/// The objective, its slope and curvature at a point come from one stencil of three rollouts
+/// (n - h, n, n + h), computed once per point whatever Ipopt asks there; a trial point of the
+/// line search costs one rollout.
 class Level2Nlp : public Ipopt::TNLP {
  public:
   Level2Nlp(const Level2Problem& p, double start, bool fd_hessian)
@@ -55,13 +60,13 @@ class Level2Nlp : public Ipopt::TNLP {
   }
 
   bool eval_f(Index, const Number* x, bool, Number& obj) override {
-    obj = -level2_objective(p_, x[0]);
+    obj = -value(x[0]);
     return std::isfinite(obj);
   }
 
   bool eval_grad_f(Index, const Number* x, bool, Number* grad) override {
-    const double h = kFdStep;
-    grad[0] = -(level2_objective(p_, x[0] + h) - level2_objective(p_, x[0] - h)) / (2.0 * h);
+    stencil(x[0]);
+    grad[0] = -(f_plus_ - f_minus_) / (2.0 * kFdStep);
     return std::isfinite(grad[0]);
   }
 
@@ -77,12 +82,12 @@ class Level2Nlp : public Ipopt::TNLP {
       j_col[0] = 0;
       return true;
     }
-    const double h = kFdStep;
+    const double h = kGFdStep;
     values[0] = (feasibility_voltage(p_, x[0] + h) - feasibility_voltage(p_, x[0] - h)) / (2.0 * h);
     return std::isfinite(values[0]);
   }
 
-  /// Exact 1x1 Hessian of the Lagrangian, obj_factor f'' + lambda g'', by second differences.
+  /// The 1x1 Hessian of the Lagrangian, obj_factor f'' + lambda g'', by second differences.
   bool eval_h(Index, const Number* x, bool, Number obj_factor, Index, const Number* lambda, bool, Index,
               Index* i_row, Index* j_col, Number* values) override {
     if (!fd_hessian_) return false;
@@ -91,10 +96,9 @@ class Level2Nlp : public Ipopt::TNLP {
       j_col[0] = 0;
       return true;
     }
-    const double h = kFdHessStep, x0 = x[0];
-    const double j2 =
-        (level2_objective(p_, x0 + h) - 2.0 * level2_objective(p_, x0) + level2_objective(p_, x0 - h)) /
-        (h * h);
+    const double x0 = x[0], h = kFdStep;
+    stencil(x0);
+    const double j2 = (f_plus_ - 2.0 * f_x_ + f_minus_) / (h * h);
     const double g2 = (feasibility_voltage(p_, x0 + h) - 2.0 * feasibility_voltage(p_, x0) +
                        feasibility_voltage(p_, x0 - h)) /
                       (h * h);
@@ -109,10 +113,31 @@ class Level2Nlp : public Ipopt::TNLP {
   }
 
  private:
+  /// The objective at x (one rollout, cached for the last point).
+  double value(double x) {
+    if (!has_x_ || x != at_x_) {
+      at_x_ = x;
+      has_x_ = true;
+      has_stencil_ = false;
+      f_x_ = level2_objective(p_, x);
+    }
+    return f_x_;
+  }
+  /// The objective at x - h and x + h beside value(x) (two more rollouts, once per point).
+  void stencil(double x) {
+    value(x);
+    if (has_stencil_) return;
+    f_minus_ = level2_objective(p_, x - kFdStep);
+    f_plus_ = level2_objective(p_, x + kFdStep);
+    has_stencil_ = true;
+  }
+
   const Level2Problem& p_;
   double start_;
   double x_;
   bool fd_hessian_;
+  bool has_x_ = false, has_stencil_ = false;
+  double at_x_ = 0.0, f_x_ = 0.0, f_minus_ = 0.0, f_plus_ = 0.0;
 };
 
 }  // namespace
@@ -178,7 +203,12 @@ Level2Result Level2Solver::solve(const Level2Problem& p) {
     bool found = false;
     const int k_lo = std::max(1, static_cast<int>(std::floor(x - kIntegerWiden)));
     const int k_hi = std::min(live, static_cast<int>(std::ceil(x + kIntegerWiden)));
-    for (int k = k_lo; k <= k_hi; ++k) {
+    // Every live agent is a candidate too: when the body is above its reference the speed loop
+    // brakes, J is flat near 0 for small n and Ipopt can stop at n = 1 below a better n = live.
+    std::vector<int> candidates;
+    for (int k = k_lo; k <= k_hi; ++k) candidates.push_back(k);
+    if (k_hi < live) candidates.push_back(live);
+    for (int k : candidates) {
       if (!level2_feasible(p, k)) continue;
       const double j = level2_objective(p, k);
       if (!found || j > res.objective) {  // strict: ties keep the smaller n
@@ -201,6 +231,13 @@ Level2Result Level2Solver::solve(const Level2Problem& p) {
   res.solve_time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return res;
+}
+
+Level2Outcome solve_level2(Level2Solver& solver, const Level2Problem& p, bool oracle) {
+  Level2Outcome o;
+  o.result = solver.solve(p);
+  if (oracle) o.oracle_n_active = exhaustive_level2(p).n_active;
+  return o;
 }
 
 }  // namespace maptr::control

@@ -4,9 +4,10 @@
 //   minimise   -(J(n) - c n)                   J = horizon_efficiency(problem, n), in [0, H]
 //   subject to 1 <= n <= live                  (n real: the relaxed number of active agents)
 //              feasibility_voltage(n) <= V_B   [V]
-// Derivatives by central finite differences; warm start from the previous relaxed solution
-// (the first solve starts at the middle of [1, live]). Integer choice: floor and ceil of the
-// relaxed n* (widened by kIntegerWiden), clipped to [1, live] and kept if feasible; the largest
+// Derivatives from a three-point stencil of rollouts per point; warm start from the previous
+// relaxed solution (the first solve starts at the middle of [1, live]). Integer choice: floor
+// and ceil of the relaxed n* (widened by kIntegerWiden), clipped to [1, live], and live itself
+// (J can be flat near 0 for small n while the body brakes), each kept if feasible; the largest
 // objective wins, ties to the smaller n (as the oracle exhaustive_level2()). None feasible: every
 // live agent runs (n_active = live). Deterministic; solve_time_ms is diagnostics only.
 // One Ipopt application per instance; not thread-safe (one solver per group thread).

@@ -169,6 +169,22 @@ TEST(Experiments, FailuresQuickDetectsAndRecovers) {
   for (const char* f : {"failures-speed.png", "failures-energy.png"}) EXPECT_TRUE(is_png(out + "/" + f)) << f;
 }
 
+// weights --quick and voltages --quick: the oracle runs beside Ipopt at every Level-2 decision;
+// Ipopt's integer must equal the oracle's at every one of them.
+TEST(Experiments, WeightsAndVoltagesQuickIpoptEqualsTheOracleAtEveryDecision) {
+  for (const char* name : {"weights", "voltages"}) {
+    TempDir tmp;
+    const std::string out = tmp.path() + "/" + name;
+    CliResult r;
+    ASSERT_NO_FATAL_FAILURE(run_quick(name, out, 600, r));
+    for (const auto& row : r.summary["rows"]) {
+      EXPECT_EQ(row["status"], "ok") << name << ": " << row.dump();
+      EXPECT_GT(num(row, "oracle_checked"), 0) << name << ": " << row.dump();
+      EXPECT_EQ(num(row, "oracle_differs"), 0) << name << ": " << row.dump();
+    }
+  }
+}
+
 TEST(Experiments, UnknownNameExitsWith2AndListsTheExperiments) {
   TempDir tmp;
   const auto r = run_cli({"experiment", "no-such-experiment", "--out", tmp.path() + "/x"}, tmp.path() + "/x", 30);

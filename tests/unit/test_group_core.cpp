@@ -3,6 +3,7 @@
 // Level-2 oracle keeps 2 of the 8 agents, at 5 m/s 3 (checked below against the oracle itself).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -33,7 +34,9 @@ struct Side {
   GroupCore core;
   GroupInput in;
 
-  explicit Side(const GroupConfig& c, const std::string& ledger_path = "") : core(0, c, ledger_path) {
+  explicit Side(const GroupConfig& c, const std::string& ledger_path = "",
+                maptr::control::Level2Runner* runner = nullptr)
+      : core(0, c, ledger_path, runner) {
     in.live.assign(kPerSide, 1);
     in.active.assign(kPerSide, 0);
     in.battery_V = 23.4;
@@ -187,6 +190,91 @@ TEST(GroupCore, LedgerIsSavedAndAFreshCoreResumesIt) {
   EXPECT_NEAR(b.core.ledger().wear_m[2], saved[2] + 10.0 * 0.01, 1e-9);
   EXPECT_EQ(b.core.ledger().wear_m[0], saved[0]);
   std::filesystem::remove(path);
+}
+
+/// Solves at once, and records at which tick (set by the test before each step) the core
+/// started and finished each decision and the speed in the problem it was given.
+struct RecordingRunner : maptr::control::Level2Runner {
+  explicit RecordingRunner(const long long& tick) : tick_(tick), inline_(true) {}
+  void start(const maptr::control::Level2Problem& p) override {
+    starts.push_back(tick_);
+    start_v.push_back(p.v_x);
+    inline_.start(p);
+  }
+  maptr::control::Level2Outcome finish() override {
+    finishes.push_back(tick_);
+    return inline_.finish();
+  }
+  const long long& tick_;
+  maptr::control::InlineLevel2Runner inline_;
+  std::vector<long long> starts, finishes;
+  std::vector<double> start_v;
+};
+
+/// Speed at tick k of a cruise that wanders around 10 m/s (inside the cruise band).
+double wander(long long k) { return 10.0 * (1.0 + 0.03 * std::sin(0.05 * static_cast<double>(k))); }
+
+TEST(GroupCore, DeferredDecisionUsesTheInputsOfItsStartTickAndActsDTicksLater) {
+  GroupConfig now_c = ec(), later_c = ec();
+  later_c.level2_defer_s = 0.1;  // d = 10 ticks of 10 ms
+  Side now(now_c);
+  long long tick = 0;
+  RecordingRunner rec(tick);
+  Side later(later_c, "", &rec);
+  std::vector<GroupDecision> immediate;
+  int applied = 0;
+  for (; tick < 400; ++tick) {
+    const double v = wander(tick);
+    immediate.push_back(now.step(v, 10.0));
+    const GroupDecision d = later.step(v, 10.0);
+    ASSERT_EQ(d.level2_ran, tick >= 10 && tick % 100 == 10) << tick;
+    if (!d.level2_ran) continue;
+    ++applied;
+    const GroupDecision& at_start = immediate[static_cast<std::size_t>(tick - 10)];
+    ASSERT_TRUE(at_start.level2_ran) << tick;
+    // The same problem (tick k's inputs), solved by a solver with the same history.
+    EXPECT_EQ(d.ipopt_n_active, at_start.ipopt_n_active) << tick;
+    EXPECT_EQ(d.level2_relaxed, at_start.level2_relaxed) << tick;
+    EXPECT_EQ(d.oracle_n_active, at_start.oracle_n_active) << tick;
+    EXPECT_NEAR(d.level2_t_s, 0.01 * static_cast<double>(tick - 10), 1e-12);
+    EXPECT_EQ(d.n_active, at_start.n_active) << tick;
+  }
+  EXPECT_EQ(applied, 4);
+  ASSERT_EQ(rec.starts, (std::vector<long long>{0, 100, 200, 300}));
+  EXPECT_EQ(rec.finishes, (std::vector<long long>{10, 110, 210, 310}));
+  for (std::size_t i = 0; i < rec.starts.size(); ++i) EXPECT_DOUBLE_EQ(rec.start_v[i], wander(rec.starts[i]));
+}
+
+TEST(GroupCore, UntilTheFirstDeferredDecisionEveryLiveAgentRuns) {
+  GroupConfig c = ec();
+  c.level2_defer_s = 0.05;
+  Side s(c);
+  for (int k = 0; k < 5; ++k) ASSERT_EQ(s.step(10.0, 10.0).n_active, kPerSide) << k;
+  const GroupDecision d = s.step(10.0, 10.0);  // tick 5: the decision of tick 0
+  ASSERT_TRUE(d.level2_ran);
+  EXPECT_EQ(d.n_active, d.oracle_n_active);
+  EXPECT_LT(d.n_active, kPerSide);
+}
+
+TEST(GroupCore, ADecisionPendingWhenCruiseEndsIsDropped) {
+  GroupConfig c = ec();
+  c.level2_defer_s = 0.1;
+  long long tick = 0;
+  RecordingRunner rec(tick);
+  Side s(c, "", &rec);
+  ASSERT_FALSE(s.step(10.0, 10.0).level2_ran);  // tick 0: started
+  for (tick = 1; tick < 5; ++tick) s.step(10.0, 10.0);
+  for (; tick < 30; ++tick) {  // 25 % below the reference from tick 5: out of cruise
+    const GroupDecision d = s.step(7.5, 10.0);
+    ASSERT_FALSE(d.level2_ran) << tick;
+    ASSERT_EQ(d.n_active, kPerSide) << tick;
+  }
+  EXPECT_EQ(rec.starts, (std::vector<long long>{0}));
+  EXPECT_EQ(rec.finishes, (std::vector<long long>{10}));  // collected when due, and not used
+  EXPECT_EQ(s.core.ledger().decisions, 0u);
+  // Back in cruise: a new decision starts at once and acts 10 ticks later.
+  s.step(10.0, 10.0);
+  EXPECT_EQ(rec.starts.back(), 30);
 }
 
 }  // namespace

@@ -413,6 +413,10 @@ TEST(Scenario, SetFieldRefusesWhatTheFileWould) {
   EXPECT_NE(refused("mode", "fast", "--mode").find("mode = fast"), std::string::npos);
   EXPECT_NE(refused("duration_s", "inf", "--duration").find("duration_s"), std::string::npos);
   EXPECT_NE(refused("colour", "red", "--colour").find("not a scenario field"), std::string::npos);
+  EXPECT_NE(refused("control.level2_defer_s", "-0.1", "scenario").find("control.level2_defer_s = -0.1"),
+            std::string::npos);
+  EXPECT_NE(refused("control.level2_defer_s", "61", "scenario").find("control.level2_defer_s = 61"),
+            std::string::npos);
   EXPECT_EQ(s.robot.gross_mass_kg, Scenario{}.robot.gross_mass_kg);  // nothing set by a refusal
   EXPECT_EQ(s.trajectory.segments[0].speed_mps, 10.0);
 }

@@ -1,0 +1,102 @@
+// maptr_level2_bench: solve time and oracle agreement of the Level-2 solver on the cruise
+// problems of the `weights` and `voltages` experiments (16 agents, one side, straight line).
+// One solver per problem family, reused and warm-started as in a group process; the speed
+// wanders around the reference (as in cruise) from one decision to the next.
+// Usage: maptr_level2_bench [DECISIONS_PER_FAMILY]   (default 200)
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "control/level2/problem.hpp"
+#include "control/level2/solver.hpp"
+
+namespace {
+
+using maptr::control::exhaustive_level2;
+using maptr::control::Level2Problem;
+using maptr::control::Level2Solver;
+
+struct Family {
+  std::string name;
+  double mass_kg, speed_mps, battery_V;
+};
+
+/// Relative amplitude of the speed's wander around the reference from decision to decision.
+constexpr double kWander = 0.03;
+
+/// CPU time of the calling thread, ms (what the solve costs, whatever else the machine runs).
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
+double percentile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(q * (v.size() - 1) + 0.5)];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int decisions = argc > 1 ? std::atoi(argv[1]) : 200;
+  if (decisions < 1) {
+    std::fprintf(stderr, "maptr_level2_bench: DECISIONS_PER_FAMILY = %s: must be a positive integer\n",
+                 argv[1]);
+    return 2;
+  }
+  const std::vector<Family> families = {
+      {"weights 13.2 kg", 13.2, 10.0, 23.4}, {"weights 23.2 kg", 23.2, 10.0, 23.4},
+      {"weights 33.2 kg", 33.2, 10.0, 23.4}, {"voltages 12 V", 14.4, 8.0, 12.0},
+      {"voltages 16 V", 14.4, 8.0, 16.0},    {"voltages 20 V", 14.4, 8.0, 20.0},
+      {"voltages 23.4 V", 14.4, 8.0, 23.4}};
+  std::vector<double> all, all_cpu;
+  int differ = 0, total = 0;
+  long iterations = 0;
+  for (const Family& f : families) {
+    Level2Solver solver;
+    std::vector<double> times, cpu;
+    for (int i = 0; i < decisions; ++i) {
+      Level2Problem p;
+      p.robot.agents = 16;
+      p.robot.gross_mass_kg = f.mass_kg;
+      p.side = i % 2;
+      p.live = p.robot.per_side();
+      p.n_other = 0.0;
+      p.phidot_ref_L = p.phidot_ref_R = f.speed_mps / p.robot.wheel_radius_m;
+      p.v_x = f.speed_mps * (1.0 + kWander * std::sin(0.7 * i));
+      p.battery_V = f.battery_V;
+      p.validate();
+      const double c0 = thread_cpu_ms();
+      const auto r = solver.solve(p);
+      cpu.push_back(thread_cpu_ms() - c0);
+      times.push_back(r.solve_time_ms);
+      iterations += r.iterations;
+      const auto oracle = exhaustive_level2(p);
+      if (r.n_active != oracle.n_active) {
+        ++differ;
+        std::printf(
+            "  differ: %s v %.3f side %d: solver %d (relaxed %.4f, status %d, J %.7f), oracle %d (J %.7f)\n",
+            f.name.c_str(), p.v_x, p.side, r.n_active, r.n_relaxed, r.ipopt_status, r.objective,
+            oracle.n_active, oracle.objective);
+      }
+      ++total;
+    }
+    all.insert(all.end(), times.begin(), times.end());
+    all_cpu.insert(all_cpu.end(), cpu.begin(), cpu.end());
+    std::printf("%-16s wall median %7.3f ms  p95 %7.3f ms  max %7.3f ms | cpu median %7.3f ms\n",
+                f.name.c_str(), percentile(times, 0.5), percentile(times, 0.95), percentile(times, 1.0),
+                percentile(cpu, 0.5));
+  }
+  std::printf(
+      "all %d decisions: wall median %.3f ms, p95 %.3f ms; cpu median %.3f ms; %.1f Ipopt iterations a "
+      "solve; "
+      "solver != oracle in %d\n",
+      total, percentile(all, 0.5), percentile(all, 0.95), percentile(all_cpu, 0.5),
+      static_cast<double>(iterations) / total, differ);
+  return 0;
+}
