@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include "comm/follower.hpp"
+#include "comm/lockstep.hpp"
 #include "comm/side.hpp"
 #include "config/scenario.hpp"
 
@@ -43,7 +44,8 @@ AgentNode::AgentNode(const comm::ProcessArgs& args, int side, int index, std::sh
 
 int AgentNode::run() {
   comm::TickFollower follower(args_, msg::NODE_AGENT, log_);
-  auto* w_reply = follower.answer_writer<msg::AgentReplyPubSubType>(comm::topic::kAgentReply);
+  follower.answer_writer<msg::AgentReplyPubSubType>(comm::topic::kAgentReply);
+  bool answered_once = false;
   return follower.run([&](const msg::PlantTick& t) {
     control::AgentInput in;
     in.tick = static_cast<long long>(t.tick());
@@ -66,7 +68,11 @@ int AgentNode::run() {
     rep.efficiency(out.efficiency);
     rep.state(to_msg(out.state));
     rep.rejected(follower.rejected());
-    w_reply->write(&rep);
+    const int per_side = args_.scenario.robot.per_side();
+    if (in.assigned || !answered_once || comm::idle_answer_due(in.tick, side_, index_, per_side)) {
+      follower.answer(rep);
+      answered_once = true;
+    }
   });
 }
 

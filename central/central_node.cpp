@@ -21,7 +21,7 @@ CentralNode::CentralNode(const comm::ProcessArgs& args, std::shared_ptr<spdlog::
 
 int CentralNode::run() {
   comm::TickFollower follower(args_, msg::NODE_CENTRAL, log_);
-  auto* w_cmd = follower.answer_writer<msg::CentralCommandPubSubType>(comm::topic::kCentral);
+  follower.answer_writer<msg::CentralCommandPubSubType>(comm::topic::kCentral);
   return follower.run([&](const msg::PlantTick& t) {
     const control::CentralOutput o =
         core_.step(t.t(), t.sides()[msg::SIDE_L].n_active(), t.sides()[msg::SIDE_R].n_active());
@@ -35,7 +35,7 @@ int CentralNode::run() {
     c.relay_count_for()[msg::SIDE_R] = static_cast<uint16_t>(o.relay_for_R);
     c.segment(static_cast<uint16_t>(o.segment));
     c.rejected(follower.rejected());
-    w_cmd->write(&c);
+    follower.answer(c);
   });
 }
 

@@ -7,7 +7,9 @@
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPFinder.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <fastrtps/utils/md5.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -29,6 +31,11 @@ void Signal::notify() {
     count_.fetch_add(1);
   }
   cv_.notify_all();
+}
+
+void Signal::arrived(uint64_t n) {
+  const uint64_t total = arrived_.fetch_add(n) + n;
+  if (total >= wake_at_.load()) notify();
 }
 
 uint64_t Signal::wait_until(uint64_t seen, std::chrono::steady_clock::time_point deadline) {
@@ -65,6 +72,30 @@ rtps::GuidPrefix_t server_prefix() {
 
 }  // namespace
 
+rtps::Locator_t shm_unicast_locator() {
+  // Fast DDS names this host's shared-memory locators by a 16-bit host id: the MD5 of the
+  // addresses of its IPv4 interfaces, folded by XOR of big-endian 16-bit words (127.0.0.1 packed
+  // little-endian when there is no interface). A locator with another id is not local to it.
+  rtps::LocatorList_t ips;
+  rtps::IPFinder::getIP4Address(&ips);
+  uint16_t id = 0;
+  if (ips.size() > 0) {
+    ::MD5 md5;
+    for (const auto& l : ips) md5.update(reinterpret_cast<const unsigned char*>(l.address), sizeof(l.address));
+    md5.finalize();
+    for (std::size_t i = 0; i < sizeof(md5.digest); i += 2)
+      id ^= static_cast<uint16_t>((static_cast<uint16_t>(md5.digest[i]) << 8) | md5.digest[i + 1]);
+  } else {
+    reinterpret_cast<uint8_t*>(&id)[0] = 127;
+    reinterpret_cast<uint8_t*>(&id)[1] = 1;
+  }
+  rtps::Locator_t loc(LOCATOR_KIND_SHM, 0);
+  loc.address[0] = 'U';
+  loc.address[1] = static_cast<rtps::octet>(id);
+  loc.address[2] = static_cast<rtps::octet>(id >> 8);
+  return loc;
+}
+
 Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   dds::DomainParticipantQos q = dds::PARTICIPANT_QOS_DEFAULT;
   q.name(name);
@@ -95,7 +126,10 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   if (o.shm) {
     auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
     if (o.shm_segment_bytes > 0) shm->segment_size(o.shm_segment_bytes);
+    if (o.shm_port_queue > 0) shm->port_queue_capacity(o.shm_port_queue);
     q.transport().user_transports.push_back(shm);
+    // Without this every sample would also go out on UDP (both transports select the reader).
+    if (o.shm_data_only) q.wire_protocol().default_unicast_locator_list.push_back(shm_unicast_locator());
   }
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   udp->interfaceWhiteList.emplace_back("127.0.0.1");
@@ -126,12 +160,6 @@ dds::Topic* Participant::make_topic(const std::string& name, dds::TypeSupport& t
 }
 
 namespace {
-
-void apply_liveliness(dds::LivelinessQosPolicy& l, double lease_s) {
-  l.kind = dds::AUTOMATIC_LIVELINESS_QOS;
-  l.lease_duration = eprosima::fastrtps::Duration_t(lease_s);
-  l.announcement_period = eprosima::fastrtps::Duration_t(lease_s / 4.0);
-}
 
 std::string exe_dir() {
   std::error_code ec;
@@ -174,7 +202,6 @@ dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterLi
   dds::DataWriterQos q;
   if (pub_->get_datawriter_qos_from_profile(profile_name(p, true), q) != ReturnCode_t::RETCODE_OK)
     throw missing_profile(profile_name(p, true));
-  if (p == Profile::kStream) apply_liveliness(q.liveliness(), o_.lease_s);
   auto* w = pub_->create_datawriter(t, q, l, l ? dds::StatusMask::publication_matched() : dds::StatusMask::none());
   if (!w) throw std::runtime_error("cannot create writer on " + t->get_name());
   return w;
@@ -189,7 +216,6 @@ dds::DataReader* Participant::reader(dds::Topic* t, Profile p, dds::DataReaderLi
   dds::DataReaderQos q;
   if (sub_->get_datareader_qos_from_profile(profile_name(p, false), q) != ReturnCode_t::RETCODE_OK)
     throw missing_profile(profile_name(p, false));
-  if (p == Profile::kStream) apply_liveliness(q.liveliness(), o_.lease_s);
   if (depth > 0) {
     q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
     q.history().depth = depth;
@@ -208,7 +234,11 @@ DdsOptions options_from_env() {
   if (const char* d = std::getenv("MAPTR_DOMAIN")) o.domain = std::atoi(d);
   if (const char* s = std::getenv("MAPTR_DISCOVERY_SERVER")) o.discovery_server = s;
   if (const char* l = std::getenv("MAPTR_LEASE_S")) o.lease_s = std::atof(l);
-  if (const char* t = std::getenv("MAPTR_TRANSPORT")) o.shm = std::string(t) != "udp";
+  if (const char* t = std::getenv("MAPTR_TRANSPORT")) {
+    o.shm = std::string(t) != "udp";
+    o.shm_data_only = std::string(t) == "shm";
+  }
+  if (const char* q = std::getenv("MAPTR_SHM_PORT_QUEUE")) o.shm_port_queue = static_cast<uint32_t>(std::atol(q));
   if (const char* id = std::getenv("MAPTR_PARTICIPANT_ID")) o.participant_id = std::atoi(id);
   if (const char* m = std::getenv("MAPTR_SHM_SEGMENT_BYTES")) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
   if (const char* f = std::getenv("MAPTR_FLEET_ID")) o.fleet_id = static_cast<uint32_t>(std::strtoul(f, nullptr, 10));

@@ -36,6 +36,8 @@ struct DdsOptions {
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
   int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
   bool shm = true;                      ///< shared memory for data (else UDP on loopback only)
+  bool shm_data_only = true;            ///< with shm: user data on shared memory only, UDP for discovery
+  uint32_t shm_port_queue = 0;          ///< messages the shared-memory listening port holds; 0: default
   uint32_t fleet_id = 0;                ///< the run's fleet id (comm/fleet_ids.hpp); 0: none
 };
 
@@ -61,10 +63,18 @@ enum class Profile {
 /// The XML file the QoS profiles come from (loaded once per process).
 std::string qos_profiles_file();
 
-/// Wakes a node's loop when any of its readers received data.
+/// Wakes a node's loop when any of its readers received data. Lock-step samples are counted
+/// (arrived()): the loop says how many it waits for (wake_at()) and is woken once, when the
+/// last of them arrives, instead of once per sample.
 class Signal {
  public:
   void notify();
+  /// n counted samples arrived: wakes the loop when the total reaches the wake-up mark.
+  void arrived(uint64_t n);
+  /// Wake the loop when the total of counted samples reaches `total` (0: at every sample).
+  void wake_at(uint64_t total) { wake_at_.store(total); }
+  /// Counted samples so far.
+  uint64_t arrivals() const { return arrived_.load(); }
   /// Waits until notified after `seen` (a value returned earlier) or until the deadline.
   uint64_t wait_until(uint64_t seen, std::chrono::steady_clock::time_point deadline);
   uint64_t count() const { return count_.load(); }
@@ -73,6 +83,8 @@ class Signal {
   std::mutex m_;
   std::condition_variable cv_;
   std::atomic<uint64_t> count_{0};
+  std::atomic<uint64_t> arrived_{0};
+  std::atomic<uint64_t> wake_at_{0};
 };
 
 /// Liveliness change seen by a reader (writer handle, alive or lost); an unmatched writer
@@ -82,23 +94,34 @@ struct LivelinessEvent {
   bool alive = false;
 };
 
-/// Reader listener that takes every valid sample into a queue and signals the loop.
+/// How an inbox wakes its loop when samples arrive.
+enum class Wake {
+  kEach,     ///< at every batch of samples
+  kCounted,  ///< counted lock-step samples: once the loop's wake-up mark is reached (Signal::arrived)
+  kNever,    ///< never: the loop polls it (samples it only looks at now and then)
+};
+
+/// Reader listener that takes every valid sample into a queue and wakes the loop as `wake` says.
 template <class T>
 class Inbox : public eprosima::fastdds::dds::DataReaderListener {
  public:
-  explicit Inbox(Signal& s) : signal_(s) {}
+  explicit Inbox(Signal& s, Wake wake = Wake::kEach) : signal_(s), wake_(wake) {}
 
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
     T sample;
     eprosima::fastdds::dds::SampleInfo info;
-    bool any = false;
+    uint64_t n = 0;
     while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;
       std::lock_guard<std::mutex> g(m_);
       q_.emplace_back(sample, info.publication_handle);
-      any = true;
+      ++n;
     }
-    if (any) signal_.notify();
+    if (n == 0 || wake_ == Wake::kNever) return;
+    if (wake_ == Wake::kCounted)
+      signal_.arrived(n);
+    else
+      signal_.notify();
   }
   void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
@@ -136,10 +159,46 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
 
  private:
   Signal& signal_;
+  const Wake wake_;
   std::mutex m_;
   std::deque<std::pair<T, eprosima::fastrtps::rtps::InstanceHandle_t>> q_;
   std::deque<LivelinessEvent> live_;
   std::atomic<int> matched_{0};
+};
+
+/// Reader listener that hands each valid sample straight to a handler on the DDS receive thread,
+/// so a lock-step answer leaves without waking another thread; until a handler is set (and after
+/// it is cleared) samples are queued as in Inbox. Matching and liveliness go to the loop as in
+/// Inbox. Calls of the handler are serialised.
+template <class T>
+class Direct : public Inbox<T> {
+ public:
+  using Handler = std::function<void(const T&, const eprosima::fastrtps::rtps::InstanceHandle_t&)>;
+  using Inbox<T>::Inbox;
+
+  /// Samples go to h from now on, those queued before first; an empty h queues them again.
+  void set_handler(Handler h) {
+    std::lock_guard<std::mutex> g(handler_m_);
+    if (h)
+      for (auto& [sample, writer] : Inbox<T>::drain()) h(sample, writer);
+    handler_ = std::move(h);
+  }
+
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
+    std::lock_guard<std::mutex> g(handler_m_);
+    if (!handler_) {
+      Inbox<T>::on_data_available(reader);
+      return;
+    }
+    T sample;
+    eprosima::fastdds::dds::SampleInfo info;
+    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK)
+      if (info.valid_data) handler_(sample, info.publication_handle);
+  }
+
+ private:
+  std::mutex handler_m_;
+  Handler handler_;
 };
 
 /// Writer listener that counts matched readers. After only_fleet(id) (before the writer is
@@ -203,7 +262,12 @@ class Participant {
   eprosima::fastdds::dds::Subscriber* sub_ = nullptr;
 };
 
-/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER, MAPTR_LEASE_S, MAPTR_TRANSPORT,
+/// The unicast shared-memory locator Fast DDS uses for this host (port 0: the participant's own
+/// well-known port is filled in at creation).
+eprosima::fastrtps::rtps::Locator_t shm_unicast_locator();
+
+/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER, MAPTR_LEASE_S, MAPTR_TRANSPORT ("shm": data on
+/// shared memory only; "shm+udp": data on both; "udp": loopback UDP only), MAPTR_SHM_PORT_QUEUE,
 /// MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES and MAPTR_FLEET_ID into the options (the
 /// launcher sets them for its children); explicit command-line values override them.
 DdsOptions options_from_env();

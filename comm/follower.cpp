@@ -38,51 +38,68 @@ bool TickFollower::from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& 
   return *plant_writer_ == writer;
 }
 
+void TickFollower::on_sample(const msg::PlantTick& t, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+                             const std::function<void(const msg::PlantTick&)>& on_tick) {
+  if (finished_.load()) return;
+  if (!from_plant(writer)) {
+    const uint64_t n = ++rejected_;
+    log_->warn("rejected a tick {} from a writer that is not the plant ({} so far)", t.tick(), n);
+    return;
+  }
+  const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
+  const bool valid = tick_valid(t, per_side);
+  // The plant sends a tick again for a restarted member or when answers are missing: answer
+  // the copy with the same answer (the plant takes an answer once).
+  if (valid && static_cast<long long>(t.tick()) == last_tick_) {
+    if (resend_ && answered_tick_ == last_tick_) resend_();
+    return;
+  }
+  if (!valid || static_cast<long long>(t.tick()) <= last_tick_) {
+    const uint64_t n = ++rejected_;
+    log_->warn("rejected a malformed or stale tick {} ({} so far)", t.tick(), n);
+    return;
+  }
+  last_tick_ = static_cast<long long>(t.tick());
+  heard_.store(true);
+  if (t.run_state() != msg::RUN_RUNNING) {
+    log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted", t.tick());
+    finished_.store(true);
+    signal_.notify();
+    return;
+  }
+  on_tick(t);
+}
+
 int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick) {
   auto& stop = stop_flag();
-  const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
   PlantWatch plant(2.0 * args_.dds.lease_s);
   bool announced = false;
-  long long last_tick = -1;
   uint64_t seen = signal_.count();
   log_->info("{} up (pid {})", args_.name, getpid());
-  while (!stop.load()) {
+  // Each tick is answered on the DDS receive thread; this loop watches readiness, the plant's
+  // liveliness and the end of the run.
+  ticks_.set_handler([&](const msg::PlantTick& t, const eprosima::fastrtps::rtps::InstanceHandle_t& w) {
+    on_sample(t, w, on_tick);
+  });
+  int code = 0;
+  while (!stop.load() && !finished_.load()) {
     seen = signal_.wait_until(seen, std::chrono::steady_clock::now() + std::chrono::milliseconds(200));
     if (!announced && ticks_.matched() >= 1 && answer_match_.matched() >= 1) {
       announce_ready(ready_, args_.name, kind_);
       announced = true;
       log_->info("matched the plant: ready");
     }
+    if (heard_.exchange(false)) plant.heard();
     plant.update(ticks_.drain_liveliness());
-    if (plant.lost()) {
+    if (plant.lost() && !finished_.load()) {
       log_->error("lost the plant (liveliness): exiting");
-      return 3;
-    }
-    for (auto& [t, handle] : ticks_.drain()) {
-      if (!from_plant(handle)) {
-        ++rejected_;
-        log_->warn("rejected a tick {} from a writer that is not the plant ({} so far)", t.tick(), rejected_);
-        continue;
-      }
-      // The plant sends a tick again for a restarted member: a copy of the last one is no news.
-      if (tick_valid(t, per_side) && static_cast<long long>(t.tick()) == last_tick) continue;
-      if (!tick_valid(t, per_side) || static_cast<long long>(t.tick()) <= last_tick) {
-        ++rejected_;
-        log_->warn("rejected a malformed or stale tick {} ({} so far)", t.tick(), rejected_);
-        continue;
-      }
-      last_tick = static_cast<long long>(t.tick());
-      plant.heard();
-      if (t.run_state() != msg::RUN_RUNNING) {
-        log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted",
-                   t.tick());
-        return 0;
-      }
-      on_tick(t);
+      code = 3;
+      break;
     }
   }
-  log_->info("stop signal: exiting");
-  return 0;
+  ticks_.set_handler(nullptr);  // no answer leaves once run() has returned
+  if (stop.load() && !finished_.load()) log_->info("stop signal: exiting");
+  return code;
 }
 
 }  // namespace maptr::comm

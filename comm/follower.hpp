@@ -9,6 +9,7 @@
 // (malformed, stale, from another writer) is dropped and counted.
 #include <spdlog/logger.h>
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -32,11 +33,21 @@ class TickFollower {
     return answer_;
   }
 
+  /// Sends this tick's answer on the answer writer, and keeps it: a repeated tick (the plant
+  /// resends a tick whose answers did not all arrive) is answered again with the same sample.
+  template <class Msg>
+  void answer(const Msg& m) {
+    last_answer_ = std::make_shared<Msg>(m);
+    answered_tick_ = last_tick_;
+    resend_ = [this, a = last_answer_]() { answer_->write(static_cast<Msg*>(a.get())); };
+    resend_();
+  }
+
   /// Calls on_tick for each valid new tick of the running run; returns the exit code.
   int run(const std::function<void(const msg::PlantTick&)>& on_tick);
 
   /// Ticks dropped as malformed or stale so far.
-  uint64_t rejected() const { return rejected_; }
+  uint64_t rejected() const { return rejected_.load(); }
 
  private:
   const ProcessArgs& args_;
@@ -44,15 +55,25 @@ class TickFollower {
   std::shared_ptr<spdlog::logger> log_;
   // Listeners first: they must outlive the participant that calls them.
   Signal signal_;
-  Inbox<msg::PlantTick> ticks_{signal_};
+  Direct<msg::PlantTick> ticks_{signal_};
   MatchCounter answer_match_{&signal_};
   std::unique_ptr<Participant> participant_;
   eprosima::fastdds::dds::DataWriter* ready_ = nullptr;
   eprosima::fastdds::dds::DataWriter* answer_ = nullptr;
-  uint64_t rejected_ = 0;
+  std::atomic<uint64_t> rejected_{0};
+  std::shared_ptr<void> last_answer_;
+  long long answered_tick_ = -1;  ///< the tick last_answer_ answers
+  std::function<void()> resend_;
   std::optional<eprosima::fastrtps::rtps::InstanceHandle_t> plant_writer_;
+  // Written on the DDS receive thread by on_sample, read by the loop.
+  long long last_tick_ = -1;
+  std::atomic<bool> heard_{false};    ///< a tick came since the loop last looked
+  std::atomic<bool> finished_{false}; ///< the run ended (a tick not RUN_RUNNING)
 
   bool from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
+  /// One tick sample, on the DDS receive thread.
+  void on_sample(const msg::PlantTick& t, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+                 const std::function<void(const msg::PlantTick&)>& on_tick);
 };
 
 }  // namespace maptr::comm

@@ -102,7 +102,7 @@ GroupNode::GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<sp
 
 int GroupNode::run() {
   comm::TickFollower follower(args_, msg::NODE_GROUP, log_);
-  auto* w_group = follower.answer_writer<msg::GroupStatusPubSubType>(comm::topic::kGroup);
+  follower.answer_writer<msg::GroupStatusPubSubType>(comm::topic::kGroup);
   if (core_.resumed())
     log_->info("resumed the wear ledger: {} decisions, {} reallocations so far", core_.ledger().decisions,
                core_.ledger().reallocations);
@@ -139,7 +139,7 @@ int GroupNode::run() {
     st.decisions(d.decisions);
     st.reallocations(d.reallocations);
     st.rejected(follower.rejected());
-    w_group->write(&st);
+    follower.answer(st);
   });
   core_.save();
   log_->info(

@@ -23,6 +23,14 @@ class Barrier {
   /// Live members that have not answered yet.
   static std::vector<MemberId> late(const Membership& m);
   static bool complete(const Membership& m);
+  /// Live members that have not answered yet, counted.
+  static int late_count(const Membership& m);
+  /// True when the tick must be sent again at now_s because answers are missing: none of the
+  /// `answers` taken so far is newer than the repair interval (a sample lost on a best-effort
+  /// transport; every follower answers a repeated tick again). Marks the send.
+  bool repair_due(uint64_t answers, double now_s);
+  /// The repair interval: `factor` times the typical barrier time, at least `min_s`.
+  void set_repair(double typical_s, double factor, double min_s);
   /// True when the deadline of the tick has passed at now_s.
   bool deadline_passed(double now_s) const { return now_s - start_s_ > deadline_s_; }
   /// True when the tick must be sent again at now_s: a rejoining member has not answered and
@@ -34,6 +42,9 @@ class Barrier {
   double resend_s_;
   double start_s_ = 0.0;
   double last_send_s_ = 0.0;
+  double repair_s_ = 0.1;
+  uint64_t answers_ = 0;
+  double progress_s_ = 0.0;
 };
 
 }  // namespace maptr::plant

@@ -45,8 +45,12 @@ std::optional<MemberId> Membership::find(const std::string& name) const {
   return std::nullopt;
 }
 
-void Membership::begin_tick() {
-  for (const auto& id : all_) at(id).answered = false;
+void Membership::begin_tick(const std::function<bool(int, int)>& excused) {
+  for (const auto& id : all_) {
+    Member& m = at(id);
+    m.answered = false;
+    m.excused = excused && id.role == Role::kAgent && !m.rejoining && excused(id.side, id.index);
+  }
 }
 
 void Membership::record(const MemberId& id, const char* what) {
@@ -95,7 +99,7 @@ int Membership::on_deadline() {
   int agents = 0;
   for (const auto& id : all_) {
     const Member& m = at(id);
-    if (!m.live || m.answered) continue;
+    if (!m.live || m.answered || m.excused) continue;
     mark_dead(id, "missed the tick deadline");
     if (id.role == Role::kAgent) ++agents;
   }

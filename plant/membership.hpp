@@ -40,6 +40,7 @@ struct Member {
   WriterId writer{};      ///< DDS writer, learnt from its first sample
   bool writer_known = false;
   bool rejoining = false;  ///< restarted (launcher): expected from the next tick, not yet heard
+  bool excused = false;    ///< an idle agent not due to answer the current tick (comm/lockstep.hpp)
 };
 
 /// One membership change: who, what, simulated time (s) and wall clock (ms since the epoch).
@@ -68,8 +69,9 @@ class Membership {
 
   /// Simulated time stamped on the records from now on, s.
   void set_time(double t_s) { t_s_ = t_s; }
-  /// A new tick: nobody has answered it yet.
-  void begin_tick();
+  /// A new tick: nobody has answered it yet. excused(side, index): the agent need not answer it
+  /// (idle and not due); a rejoining agent is always waited for.
+  void begin_tick(const std::function<bool(int, int)>& excused = nullptr);
 
   /// Launcher event number seq about process `name`: a death ends the wait for it; a started
   /// (restarted) process is waited for from now on, and its old writer no longer counts.

@@ -26,6 +26,11 @@ struct PlantNodeConfig {
   double gate_timeout_s = 120.0;
   /// Wall time after which tick k is sent again to a restarted member that has not answered, s.
   double resend_s = 0.2;
+  /// A tick is sent again when no answer came for repair_factor x the typical barrier time
+  /// (an exponential average), and at least repair_min_s: a lost sample costs that much.
+  double repair_factor = 10.0;
+  double repair_min_s = 0.05;
+  double barrier_average_weight = 0.05;  ///< weight of the newest tick in that average
   /// Longest wait for a DDS sample inside the barrier and the fault gate, ms.
   std::chrono::milliseconds poll{50};
   /// Longest wait for a DDS sample during discovery, ms.

@@ -3,6 +3,7 @@
 #include <thread>
 
 #include "comm/fleet_ids.hpp"
+#include "comm/lockstep.hpp"
 #include "config/scenario.hpp"
 #include "model/kinematics.hpp"
 #include "plant/plant_loop.hpp"
@@ -10,10 +11,13 @@
 namespace maptr::plant {
 
 void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
-  for (auto& [r, h] : replies_.drain()) {
+  auto replies = replies_.drain();
+  consumed_ += replies.size();
+  for (auto& [r, h] : replies) {
     Verdict v = check(r, lim, k);
     if (v != Verdict::kMalformed && !sent_by(h, comm::agent_participant_id(r.side(), r.index(), sc_.robot.agents)))
       v = Verdict::kForged;
+    if (repeated(v, r.tick(), k)) continue;
     if (v != Verdict::kAccepted) {
       ++rejected_;
       if (v == Verdict::kMalformed)
@@ -29,9 +33,13 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
 }
 
 void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
-  for (auto& [g, h] : groups_.drain()) {
+  auto statuses = groups_.drain();
+  consumed_ += statuses.size();
+  for (auto& [g, h] : statuses) {
     const Verdict v = check(g, lim, k);
-    if (v != Verdict::kAccepted || !sent_by(h, comm::group_participant_id(g.side()))) {
+    const bool own = sent_by(h, comm::group_participant_id(g.side()));
+    if (own && repeated(v, g.tick(), k)) continue;
+    if (v != Verdict::kAccepted || !own) {
       ++rejected_;
       continue;
     }
@@ -47,8 +55,13 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
 }
 
 void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
-  for (auto& [c, h] : centrals_.drain()) {
-    if (check(c, lim, k) != Verdict::kAccepted || !sent_by(h, comm::kCentralParticipantId)) {
+  auto commands = centrals_.drain();
+  consumed_ += commands.size();
+  for (auto& [c, h] : commands) {
+    const Verdict v = check(c, lim, k);
+    const bool own = sent_by(h, comm::kCentralParticipantId);
+    if (own && repeated(v, c.tick(), k)) continue;
+    if (v != Verdict::kAccepted || !own) {
       ++rejected_;
       continue;
     }
@@ -64,7 +77,10 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
 
 bool PlantLoop::collect() {
   const long long k = core_.tick();
-  membership_.begin_tick();
+  // An idle agent (not assigned in tick k) answers only when its slot is due (comm/lockstep.hpp).
+  membership_.begin_tick([&](int side, int index) {
+    return sent_.sides()[side].active()[index] == 0 && !comm::idle_answer_due(k, side, index, per_side_);
+  });
   for (auto& side : cmd_.applied)
     for (auto& a : side) a = sim::AgentApplied{};
   times_.start = Clock::now();
@@ -72,6 +88,7 @@ bool PlantLoop::collect() {
   barrier_.start(now_s());
   const SampleLimits lim = limits();
   for (;;) {
+    const uint64_t seen = signal_.count();
     // Membership first, then the samples.
     apply_launcher_events();
     apply_liveliness();
@@ -84,15 +101,30 @@ bool PlantLoop::collect() {
     // A restarted member may have matched the tick writer after tick k went out: send it again
     // (unchanged; followers that have it ignore the copy).
     if (barrier_.resend_due(membership_, now_s())) w_tick_->write(&sent_);
+    if (barrier_.repair_due(consumed_, now_s())) {
+      ++repairs_;
+      w_tick_->write(&sent_);
+    }
     if (barrier_.deadline_passed(now_s())) {
       declared_dead_ += membership_.on_deadline();
       log_membership();
       continue;
     }
-    wait(c_.poll);
+    wait_for_answers(seen, c_.poll);
   }
+  signal_.wake_at(0);
   times_.complete = Clock::now();
+  const double w = c_.barrier_average_weight;
+  barrier_average_s_ = (1.0 - w) * barrier_average_s_ + w * us(times_.start, times_.complete) * 1e-6;
+  barrier_.set_repair(barrier_average_s_, c_.repair_factor, c_.repair_min_s);
   return !stop_.load();
+}
+
+void PlantLoop::wait_for_answers(uint64_t seen, std::chrono::milliseconds at_most) {
+  const uint64_t want = consumed_ + static_cast<uint64_t>(Barrier::late_count(membership_));
+  signal_.wake_at(want);
+  if (signal_.arrivals() >= want) return;  // already here: take them
+  seen_ = signal_.wait_until(seen, Clock::now() + at_most);
 }
 
 void PlantLoop::integrate() {
@@ -136,6 +168,7 @@ int PlantLoop::report(bool stopped) {
   in.rejected_samples = rejected_;
   in.rejected_by_process = rejects_by_process();
   in.missed_deadlines = missed_deadlines_;
+  in.tick_repairs = repairs_;
   in.declared_dead_by_deadline = declared_dead_;
   in.tick_timing_us = timing_.json();
   std::ofstream(run_dir_ + "/plant.json") << plant_report(core_, in, membership_.records()).dump(2) << "\n";

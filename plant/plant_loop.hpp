@@ -91,6 +91,9 @@ class PlantLoop {
   /// Samples dropped by each process: the plant's own and what each follower last reported.
   std::map<std::string, uint64_t> rejects_by_process() const;
   void wait(std::chrono::milliseconds at_most);
+  /// Sleeps until every late member's answer may have arrived (one wake-up, not one per sample),
+  /// a membership event, or `at_most`.
+  void wait_for_answers(uint64_t seen, std::chrono::milliseconds at_most);
   double now_s() const { return std::chrono::duration<double>(Clock::now() - origin_).count(); }
 
   const config::Scenario& sc_;
@@ -102,9 +105,9 @@ class PlantLoop {
   const Clock::time_point origin_ = Clock::now();
 
   comm::Signal signal_;
-  comm::Inbox<msg::AgentReply> replies_{signal_};
-  comm::Inbox<msg::GroupStatus> groups_{signal_};
-  comm::Inbox<msg::CentralCommand> centrals_{signal_};
+  comm::Inbox<msg::AgentReply> replies_{signal_, comm::Wake::kCounted};
+  comm::Inbox<msg::GroupStatus> groups_{signal_, comm::Wake::kCounted};
+  comm::Inbox<msg::CentralCommand> centrals_{signal_, comm::Wake::kCounted};
   comm::Inbox<msg::MembershipEvent> members_{signal_};
   comm::Inbox<msg::Control> controls_{signal_};
   comm::MatchCounter tick_match_{&signal_};
@@ -113,6 +116,7 @@ class PlantLoop {
   eprosima::fastdds::dds::DataWriter* w_ready_ = nullptr;
   eprosima::fastdds::dds::DataWriter* w_gate_ = nullptr;
   uint64_t seen_ = 0;
+  uint64_t consumed_ = 0;  ///< lock-step samples taken from the counted inboxes so far
 
   sim::PlantCore core_;
   std::unique_ptr<RunFiles> files_;
@@ -127,6 +131,8 @@ class PlantLoop {
   Clock::time_point wall0_;
   std::string end_reason_ = "duration reached";
   uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;
+  uint64_t repairs_ = 0;              ///< ticks sent again because answers were missing
+  double barrier_average_s_ = 0.0;    ///< typical barrier time (exponential average), s
   /// What each follower last said it dropped (its `rejected` field).
   std::vector<uint64_t> agent_rejects_[2];
   uint64_t group_rejects_[2] = {0, 0}, central_rejects_ = 0;

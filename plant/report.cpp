@@ -88,6 +88,7 @@ nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
   j["rejected_samples"] = in.rejected_samples;
   j["rejected_by_process"] = in.rejected_by_process;
   j["missed_deadlines"] = in.missed_deadlines;
+  j["tick_repairs"] = in.tick_repairs;
   j["tick_timing_us"] = in.tick_timing_us;
   j["declared_dead_by_deadline"] = in.declared_dead_by_deadline;
   j["membership_events"] = membership_json(records);

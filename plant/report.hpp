@@ -59,6 +59,7 @@ struct ReportInputs {
   /// Samples each process dropped (the plant's own, and what each follower last reported).
   std::map<std::string, uint64_t> rejected_by_process;
   uint64_t missed_deadlines = 0;
+  uint64_t tick_repairs = 0;  ///< ticks sent again because answers were missing (lost samples)
   uint64_t declared_dead_by_deadline = 0;
   nlohmann::json tick_timing_us = nlohmann::json::object();
 };

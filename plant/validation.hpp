@@ -34,4 +34,10 @@ Verdict check(const Sample& s, const SampleLimits& l, long long k) {
   return Verdict::kAccepted;
 }
 
+/// True for a copy of the answer to the previous tick (k - 1) from its own sender: a follower
+/// answers a repeated tick again, and that copy may arrive once tick k is out. Not a reject.
+inline bool repeated(Verdict v, unsigned long long sample_tick, long long k) {
+  return v == Verdict::kOtherTick && static_cast<long long>(sample_tick) + 1 == k;
+}
+
 }  // namespace maptr::plant

@@ -89,8 +89,8 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--chaos", a.chaos,
                   "random kills and restarts of agents and controllers, reproducible from SEED");
   run->add_option("--external", a.external, "an agent you start yourself (the launcher prints the command)");
-  run->add_option("--transport", a.transport, "data transport: shm, udp or auto (shm up to 64 agents)")
-      ->check(CLI::IsMember({"auto", "shm", "udp"}));
+  run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm up to 64 agents)")
+      ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
   run->add_option("--record", a.record, "what run.mcap records: all (default), plant or none");
   run->add_flag("--quiet", a.quiet, "no progress lines");
   return run;

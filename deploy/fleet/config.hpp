@@ -40,6 +40,9 @@ struct FleetConfig {
   double discovery_term_s = 3.0;
   /// "auto" transport: shared memory up to this many agents, UDP above.
   int shm_max_agents = 64;
+  /// Messages a shared-memory listening port holds: room for every answer of a tick, several
+  /// times over (the plant's port takes one from each agent, group and central per tick).
+  int shm_port_queue(int agents) const { return std::max(512, 4 * (agents + 8)); }
   /// Period of the progress line, s.
   double progress_period_s = 1.0;
   /// Poll periods of the discovery loop, the run loop and a fault gate's wait.

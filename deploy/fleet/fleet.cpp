@@ -73,12 +73,15 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   dds_.lease_s = cfg.lease_s(agents);
   rec_.transport = o.transport != "auto" ? o.transport : (agents <= cfg.shm_max_agents ? "shm" : "udp");
   rec_.chaos_seed = o.chaos_seed;
-  dds_.shm = rec_.transport == "shm";
+  dds_.shm = rec_.transport != "udp";
+  dds_.shm_data_only = rec_.transport == "shm";
+  dds_.shm_port_queue = static_cast<uint32_t>(cfg.shm_port_queue(agents));  // the recorder takes every sample
   env_ = {{"MAPTR_FLEET_ID", std::to_string(dds_.fleet_id)},
           {"MAPTR_TRANSPORT", rec_.transport},
           {"MAPTR_DOMAIN", std::to_string(o.domain)},
           {"MAPTR_DISCOVERY_SERVER", dds_.discovery_server},
-          {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)}};
+          {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)},
+          {"MAPTR_SHM_PORT_QUEUE", std::to_string(cfg.shm_port_queue(agents))}};
   ds_->start_or_throw(env_, ids_);
   participant_ = std::make_unique<comm::Participant>("launcher", dds_);
   auto& p = *participant_;

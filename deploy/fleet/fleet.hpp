@@ -87,7 +87,7 @@ class Fleet {
   std::unique_ptr<DiscoveryServer> ds_;
   comm::Signal signal_;
   comm::Inbox<msg::NodeReady> ready_{signal_};
-  comm::Inbox<msg::PlantTick> ticks_{signal_};
+  comm::Inbox<msg::PlantTick> ticks_{signal_, comm::Wake::kNever};  // polled: no wake-up per tick
   comm::Inbox<msg::FaultGate> gates_{signal_};
   std::unique_ptr<comm::Participant> participant_;
   std::unique_ptr<recorder::Recorder> recorder_;
