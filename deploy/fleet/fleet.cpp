@@ -257,7 +257,7 @@ bool Fleet::discover() {
     if (early_death || interrupted().load() || since(t_launch_) > timeout) {
       rec_.status = interrupted().load() ? "aborted: interrupted during discovery"
                     : early_death        ? "aborted: a process died during discovery (see logs/)"
-                                         : "aborted: discovery timed out; not ready: " + not_ready();
+                                         : std::string(kDiscoveryTimeout) + "; not ready: " + not_ready();
       break;
     }
   }

@@ -5,6 +5,9 @@
 #include "deploy/fleet/fleet.hpp"
 #include "deploy/report/run_plot.hpp"
 
+#include <filesystem>
+#include <fstream>
+
 namespace maptr::deploy {
 
 std::string domain_problem(int domain, int agents) {
@@ -18,7 +21,9 @@ std::string domain_problem(int domain, int agents) {
          ", above 65535; use a domain from 0 to " + std::to_string(highest);
 }
 
-nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
+namespace {
+
+nlohmann::json launch_once(const LaunchOptions& o, spdlog::logger& log) {
   // Set up: the run directory, the fleet's discovery server, the launcher's participant.
   fleet::Fleet f(o, log);
   // Start the controllers and the first wave of agents; the next waves start as the previous
@@ -29,7 +34,45 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
   f.run();
   // End every process, then the discovery server; remove the fleet's shared-memory ports.
   f.end();
-  nlohmann::json s = f.summary();
+  return f.summary();
+}
+
+/// The domain of a second attempt: the next one, or the one below when the next cannot hold
+/// the fleet's ports.
+int retry_domain(int domain, int agents) {
+  if (domain_problem(domain + 1, agents).empty()) return domain + 1;
+  return domain > 0 ? domain - 1 : domain;
+}
+
+/// Keeps the files of a first attempt in RUN/first-attempt/ (its logs and summary).
+void keep_first_attempt(const std::string& run_dir) {
+  namespace fs = std::filesystem;
+  const fs::path keep = fs::path(run_dir) / "first-attempt";
+  fs::create_directories(keep);
+  for (const char* name : {"logs", "summary.json", "fleet.json"}) {
+    std::error_code ec;
+    if (fs::exists(fs::path(run_dir) / name)) fs::rename(fs::path(run_dir) / name, keep / name, ec);
+  }
+}
+
+}  // namespace
+
+nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
+  nlohmann::json s = launch_once(o, log);
+  // A fleet whose processes did not all report ready in time is not a result: one more attempt
+  // with a fresh discovery server on another domain (other ports) before the run is aborted.
+  const std::string first = s.value("status", "");
+  if (first.rfind(kDiscoveryTimeout, 0) == 0 && !fleet::interrupted().load()) {
+    LaunchOptions again = o;
+    again.domain = retry_domain(o.domain, o.scenario.robot.agents);
+    log.warn("{}; running the fleet once more, with a fresh discovery server, on DDS domain {}", first,
+             again.domain);
+    keep_first_attempt(o.run_dir);
+    s = launch_once(again, log);
+    s["discovery_retry"] = {{"first_status", first}, {"first_domain", o.domain}, {"domain", again.domain},
+                            {"first_attempt", "first-attempt/"}};
+    std::ofstream(o.run_dir + "/summary.json") << s.dump(2) << "\n";
+  }
   // The picture of the run (run.png), from the files just written.
   report::draw_run_plot(o.run_dir);
   return s;

@@ -38,6 +38,11 @@ void send_command(const std::string& run_dir, const std::string& action, const s
 /// Runs the fleet; returns the summary (also written to RUN_DIR/summary.json).
 nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log);
 
+/// The start of the status of a fleet whose processes did not all report ready in time; launch()
+/// then runs it once more (fresh discovery server, another domain) and the summary says so
+/// (`discovery_retry`), keeping the first attempt's files in RUN/first-attempt/.
+inline constexpr const char* kDiscoveryTimeout = "aborted: discovery timed out";
+
 /// Why a fleet of `agents` agents cannot run on DDS `domain` (its participants' ports would go
 /// above 65535), or "" if it can. launch() refuses such a fleet with this text.
 std::string domain_problem(int domain, int agents);

@@ -200,3 +200,23 @@ TEST(Fleet, ADomainWhosePortsCannotHoldTheFleetIsRefused) {
   EXPECT_EQ(r2.exit_code, 2) << r2.output;
   EXPECT_NE(r2.output.find("240"), std::string::npos) << r2.output;
 }
+
+// A fleet that never gets ready (an external agent nobody starts) is run once more, on another
+// domain with a fresh discovery server, before it is called aborted; the summary says so and
+// the first attempt's files are kept.
+TEST(Fleet, ADiscoveryTimeoutIsRetriedOnceAndTheSummarySaysSo) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  auto r = run_cli(run_args(out, {"--agents", "2", "--duration", "2", "--external", "L0"}), out, 300);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  EXPECT_NE(r.exit_code, 0);
+  const std::string status = r.summary["status"];
+  EXPECT_EQ(status.rfind("aborted: discovery timed out", 0), 0u) << status;
+  ASSERT_TRUE(r.summary.contains("discovery_retry")) << r.summary.dump(2);
+  const auto& retry = r.summary["discovery_retry"];
+  EXPECT_EQ(retry["first_status"].get<std::string>().rfind("aborted: discovery timed out", 0), 0u);
+  EXPECT_NE(retry["domain"].get<int>(), retry["first_domain"].get<int>());
+  EXPECT_TRUE(std::ifstream(out + "/first-attempt/summary.json").good());
+  EXPECT_TRUE(std::ifstream(out + "/first-attempt/logs/launcher.log").good() ||
+              std::ifstream(out + "/logs/launcher.log").good());
+}
