@@ -23,12 +23,16 @@ std::string secure_problem(const LaunchOptions& o) {
   if (!o.secure) return "";
   for (const auto& f : o.scenario.faults)
     if (f.target == fleet::kDiscoveryTarget)
-      return "--secure: faults[] target 'discovery': a secure fleet uses simple discovery and has no discovery "
-             "server to " + f.action;
+      return "--secure: faults[] target 'discovery': a secure fleet uses simple discovery and has no "
+             "discovery "
+             "server to " +
+             f.action;
   const int max_agents = fleet::FleetConfig{}.shm_max_agents;
   if (o.transport == "udp" || o.scenario.robot.agents > max_agents)
     return "--secure: the fleet runs on shared memory (up to " + std::to_string(max_agents) +
-           " agents, --transport auto or shm): simple discovery does not cross the loopback interface";
+           " agents, --transport auto or shm): its simple discovery needs multicast, which the loopback "
+           "interface "
+           "does not carry";
   return "";
 }
 
