@@ -21,7 +21,7 @@ struct FleetConfig {
   /// discovery (a process ready, a wave started) are started again with fresh participant ids
   /// (a pair whose key exchange was lost never matches otherwise), s; discovery may take this
   /// many times its plain timeout.
-  double secure_rematch_s = 8.0;
+  double secure_rematch_s = 12.0;
   double secure_discovery_factor = 2.0;
   /// The next wave starts when the previous one is ready, or after this wall time, s.
   double wave_wait_s = 20.0;

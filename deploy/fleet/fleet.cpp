@@ -9,8 +9,8 @@
 #include <fstream>
 #include <random>
 
-#include "comm/fleet_ids.hpp"
 #include "comm/fleet_guid.hpp"
+#include "comm/fleet_ids.hpp"
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/secure_domain.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
@@ -228,16 +228,25 @@ std::string Fleet::not_ready() const {
 }
 
 void Fleet::rematch_unready() {
-  // Before the run starts: kill and start again every started process that is not ready, with
-  // the next participant id of its window (the plant too: it is ready once it matched everyone).
+  // Before the run starts: end and start again, with the next participant id of its window,
+  // every started process that is not ready; the plant (ready once it matched everyone) only
+  // when it is the last one. SIGTERM, not SIGKILL: a process killed inside a shared-memory
+  // operation leaves its lock held and the others' transport aborts.
+  std::vector<Child*> unready;
   for (std::size_t i = 0; i < waves_->started(); ++i) {
     Child& c = kids_[i];
-    if (c.external || !c.running || ready_names_.count(c.name)) continue;
-    stop_process(c.pid, 0.0);
-    c.running = false;
-    spawn_child(c);
-    log_.warn("secure domain: {} did not match the fleet within {:.0f} s; started again (pid {})", c.name,
-              cfg_.secure_rematch_s, c.pid);
+    if (!c.external && c.running && !ready_names_.count(c.name)) unready.push_back(&c);
+  }
+  if (unready.size() > 1)
+    unready.erase(
+        std::remove_if(unready.begin(), unready.end(), [](Child* c) { return c->kind == ChildKind::kPlant; }),
+        unready.end());
+  for (Child* c : unready) {
+    stop_process(c->pid, cfg_.end_term_s);
+    c->running = false;
+    spawn_child(*c);
+    log_.warn("secure domain: {} did not match the fleet within {:.0f} s; started again (pid {})", c->name,
+              cfg_.secure_rematch_s, c->pid);
   }
   write_fleet();
   last_progress_ = Clock::now();
