@@ -1,6 +1,7 @@
 #include "comm/dds.hpp"
 
 #include "comm/fleet_guid.hpp"
+#include "comm/security.hpp"
 #include "comm/shm_files.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -138,6 +139,11 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   if (o.participant_id >= 0) q.wire_protocol().participant_id = o.participant_id;
   if (o.fleet_id != 0 && o.participant_id >= 0 && !o.is_server)
     q.wire_protocol().prefix = fleet_guid_prefix(o.fleet_id, o.participant_id);
+  if (!o.security_dir.empty()) {
+    const SecureFiles files{o.security_dir};
+    add_security_properties(q.properties(), files, name);
+    learn_secure_identities(files);
+  }
   dp_ = dds::DomainParticipantFactory::get_instance()->create_participant(o.domain, q);
   if (!dp_) throw std::runtime_error("cannot create DDS participant '" + name + "' on domain " + std::to_string(o.domain));
   pub_ = dp_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
@@ -242,6 +248,7 @@ DdsOptions options_from_env() {
   if (const char* id = std::getenv("MAPTR_PARTICIPANT_ID")) o.participant_id = std::atoi(id);
   if (const char* m = std::getenv("MAPTR_SHM_SEGMENT_BYTES")) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
   if (const char* f = std::getenv("MAPTR_FLEET_ID")) o.fleet_id = static_cast<uint32_t>(std::strtoul(f, nullptr, 10));
+  if (const char* s = std::getenv("MAPTR_SECURITY_DIR")) o.security_dir = s;
   return o;
 }
 

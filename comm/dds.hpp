@@ -39,6 +39,9 @@ struct DdsOptions {
   bool shm_data_only = true;            ///< with shm: user data on shared memory only, UDP for discovery
   uint32_t shm_port_queue = 0;          ///< messages the shared-memory listening port holds; 0: default
   uint32_t fleet_id = 0;                ///< the run's fleet id (comm/fleet_ids.hpp); 0: none
+  /// Folder of a secure domain (comm/security.hpp): the participant authenticates as the
+  /// identity of its name, encrypts and enforces its permissions; empty: a plain domain.
+  std::string security_dir;
 };
 
 /// Topic names (one place).
@@ -220,7 +223,8 @@ class MatchCounter : public eprosima::fastdds::dds::DataWriterListener {
 
 /// A participant with one publisher and one subscriber; owns every entity it creates
 /// (delete_contained_entities() on destruction). With a fleet id and an explicit participant id,
-/// its GUID prefix is the fleet's (comm/fleet_ids.hpp).
+/// its GUID prefix is the fleet's (comm/fleet_ids.hpp). With a security folder, `name` is also
+/// its identity (NAME.cert.pem, NAME.permissions.p7s there).
 class Participant {
  public:
   Participant(const std::string& name, const DdsOptions& o);
@@ -268,7 +272,7 @@ eprosima::fastrtps::rtps::Locator_t shm_unicast_locator();
 
 /// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER, MAPTR_LEASE_S, MAPTR_TRANSPORT ("shm": data on
 /// shared memory only; "shm+udp": data on both; "udp": loopback UDP only), MAPTR_SHM_PORT_QUEUE,
-/// MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES and MAPTR_FLEET_ID into the options (the
+/// MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES, MAPTR_FLEET_ID and MAPTR_SECURITY_DIR into the options (the
 /// launcher sets them for its children); explicit command-line values override them.
 DdsOptions options_from_env();
 

@@ -1,5 +1,7 @@
 #include "comm/fleet_guid.hpp"
 
+#include "comm/security.hpp"
+
 #include <unistd.h>
 
 namespace maptr::comm {
@@ -45,6 +47,12 @@ std::optional<int> fleet_participant(uint32_t fleet_id, const rtps::InstanceHand
 }
 
 bool written_by_id(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer, int base_id) {
+  const rtps::GUID_t guid = rtps::iHandle2GUID(writer);
+  // On a secure domain the prefix names the writer's certificate (comm/security.hpp).
+  if (is_secure_prefix(guid.guidPrefix)) {
+    const auto secure = secure_base_id(guid.guidPrefix, agents);
+    return secure && base_id >= 0 && *secure == base_id;
+  }
   const auto id = fleet_participant(fleet_id, writer);
   return id && base_id >= 0 && *id % fleet_stride(agents) == base_id;
 }

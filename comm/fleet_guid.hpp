@@ -6,7 +6,9 @@
 // big-endian). A sample's writer handle holds its writer's GUID, so a reader can tell which
 // process of its fleet wrote it. Without DDS Security any local process can forge a prefix:
 // this keeps other fleets and careless tools out, not attackers (README, "What a local user
-// can do").
+// can do"). On a secure domain (`maptr run --secure`) DDS Security replaces the prefix by one
+// derived from the participant's certificate; written_by_id() then names the writer by its
+// certificate (comm/security.hpp).
 #include <fastdds/rtps/common/GuidPrefix_t.hpp>
 #include <fastdds/rtps/common/InstanceHandle.h>
 

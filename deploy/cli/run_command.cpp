@@ -92,6 +92,8 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm up to 64 agents)")
       ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
   run->add_option("--record", a.record, "what run.mcap records: all (default), plant or none");
+  run->add_flag("--secure", a.secure,
+                "DDS Security: a private CA, one certificate and permissions per process, encrypted data");
   run->add_flag("--quiet", a.quiet, "no progress lines");
   return run;
 }
@@ -141,10 +143,12 @@ int cmd_run(const RunArgs& a, const std::string& bin_dir) {
   o.transport = a.transport;
   o.chaos_seed = a.chaos;
   o.domain = resolve_domain(a.domain);
-  if (const std::string why = domain_problem(o.domain, o.scenario.robot.agents); !why.empty()) {
-    std::cerr << "maptr: " << why << "\n";
-    return kExitBadInput;
-  }
+  o.secure = a.secure;
+  for (const std::string& why : {domain_problem(o.domain, o.scenario.robot.agents), secure_problem(o)})
+    if (!why.empty()) {
+      std::cerr << "maptr: " << why << "\n";
+      return kExitBadInput;
+    }
   auto log = launcher_log(o.run_dir);
   std::cerr << "maptr: run folder " << o.run_dir << "\n";
   nlohmann::json summary;

@@ -15,7 +15,7 @@ struct RunArgs {
   std::string scenario;
   std::string agents, gross_kg, motor, mode, duration, speed, trace_every, tick_hz, record;
   std::string out;
-  bool realtime = false, quiet = false;
+  bool realtime = false, quiet = false, secure = false;
   int domain = -1;
   std::vector<std::string> kills, restarts, external;
   long long chaos = -1;

@@ -14,6 +14,15 @@ struct FleetConfig {
   double discovery_timeout_per_agent_s = 0.5;
   /// Agents per launch wave (the first wave also carries the plant, central and both groups).
   std::size_t wave_size = 32;
+  /// ... on a secure domain, where every pair of participants runs an authentication handshake
+  /// and a key exchange, and a start storm on two cores leaves some pairs unmatched.
+  std::size_t secure_wave_size = 4;
+  /// On a secure domain, processes still not ready this long after the last progress of
+  /// discovery (a process ready, a wave started) are started again with fresh participant ids
+  /// (a pair whose key exchange was lost never matches otherwise), s; discovery may take this
+  /// many times its plain timeout.
+  double secure_rematch_s = 12.0;
+  double secure_discovery_factor = 2.0;
   /// The next wave starts when the previous one is ready, or after this wall time, s.
   double wave_wait_s = 20.0;
   /// The discovery server must listen on its port within this wall time after its start, s.

@@ -9,9 +9,10 @@
 #include <fstream>
 #include <random>
 
-#include "comm/fleet_ids.hpp"
 #include "comm/fleet_guid.hpp"
+#include "comm/fleet_ids.hpp"
 #include "comm/shm_files.hpp"
+#include "deploy/fleet/secure_domain.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
 
 namespace maptr::deploy::fleet {
@@ -52,19 +53,22 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   // Restarts cycle through as many participant-id windows as stay below port 65536.
   if ((comm::rtps_max_participant_id(o.domain) + 1) / fleet_participants(agents) < 1)
     throw std::runtime_error(domain_problem(o.domain, agents));
-  ds_ = std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
-                                          cfg.discovery_listen_s,
-                                          cfg.discovery_restart_leases * cfg.lease_s(agents));
+  if (!o.secure)
+    ds_ = std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
+                                            cfg.discovery_listen_s,
+                                            cfg.discovery_restart_leases * cfg.lease_s(agents));
   // Participant ids: 0 the discovery server, 1 the launcher, then the fleet.
   dds_.domain = o.domain;
-  dds_.discovery_server = ds_->address();
+  if (ds_) dds_.discovery_server = ds_->address();
   dds_.participant_id = comm::kLauncherParticipantId;
   // The fleet id makes every participant's GUID prefix say which process of this fleet it is
   // (comm/fleet_guid.hpp): followers take ticks only from the plant's writer.
   dds_.fleet_id = std::random_device{}() | 1u;
   // The plant's participant, known from the fleet id and its participant id: its ticks and gates
   // are the only ones the launcher follows (an external plant is started with the same ids).
-  {
+  // On a secure domain the plant's prefix comes from its certificate: learnt from its first
+  // authenticated tick (learn_secure_plant).
+  if (!o.secure) {
     const auto p = comm::fleet_guid_prefix(dds_.fleet_id, comm::kPlantParticipantId);
     GuidPrefix plant{};
     std::copy(std::begin(p.value), std::end(p.value), plant.begin());
@@ -79,10 +83,15 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   env_ = {{"MAPTR_FLEET_ID", std::to_string(dds_.fleet_id)},
           {"MAPTR_TRANSPORT", rec_.transport},
           {"MAPTR_DOMAIN", std::to_string(o.domain)},
-          {"MAPTR_DISCOVERY_SERVER", dds_.discovery_server},
           {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)},
           {"MAPTR_SHM_PORT_QUEUE", std::to_string(cfg.shm_port_queue(agents))}};
-  ds_->start_or_throw(env_, ids_);
+  make_children();
+  if (ds_) {
+    env_["MAPTR_DISCOVERY_SERVER"] = dds_.discovery_server;
+    ds_->start_or_throw(env_, ids_);
+  } else {
+    make_secure_domain();
+  }
   participant_ = std::make_unique<comm::Participant>("launcher", dds_);
   auto& p = *participant_;
   p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &ready_);
@@ -92,7 +101,6 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   w_control_ = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
   p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &gates_);
   start_recorder();
-  make_children();
   t_launch_ = Clock::now();
 }
 
@@ -170,12 +178,33 @@ void Fleet::stop_recorder() {
   log_.info("recorded run.mcap:{}", counts);
 }
 
+void Fleet::make_secure_domain() {
+  // A private CA and one identity per process (and the launcher) in RUN_DIR/security.
+  const auto t0 = Clock::now();
+  const auto domain = SecureDomain::create(o_.run_dir + "/security", o_.domain);
+  domain.add_identity({"launcher", fleet_publish_topics("launcher")});
+  for (const auto& c : kids_) domain.add_identity({c.name, fleet_publish_topics(c.name)});
+  dds_.security_dir = domain.files().dir;
+  env_["MAPTR_SECURITY_DIR"] = dds_.security_dir;
+  log_.info("secure domain: CA and {} identities in {} ({:.2f} s)", kids_.size() + 1, dds_.security_dir,
+            since(t0));
+}
+
+void Fleet::learn_secure_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer) {
+  if (!secure() || clock_.knows_plant()) return;
+  if (!comm::written_by_id(dds_.fleet_id, sc_.robot.agents, writer, comm::kPlantParticipantId)) return;
+  clock_.learn_plant(writer_prefix(writer));
+  log_.info("the plant's participant is authenticated: following its clock");
+}
+
 void Fleet::write_fleet() const {
   // The fleet's coordinates, for tools and for processes started by hand.
   nlohmann::json fleet = {{"launcher_pid", getpid()},
                           {"domain", o_.domain},
-                          {"discovery_server", ds_->address()},
-                          {"discovery_server_pid", ds_->pid()},
+                          {"discovery_server", ds_ ? nlohmann::json(ds_->address()) : nlohmann::json()},
+                          {"discovery_server_pid", ds_ ? nlohmann::json(ds_->pid()) : nlohmann::json()},
+                          {"secure", secure()},
+                          {"security_dir", dds_.security_dir},
                           {"lease_s", dds_.lease_s},
                           {"fleet_id", dds_.fleet_id},
                           {"config", cfg_path_},
@@ -211,11 +240,13 @@ void Fleet::print_external_commands() const {
 }
 
 void Fleet::start_processes() {
-  waves_ = std::make_unique<LaunchWaves>(kids_.size(), kControllers, cfg_.wave_size, cfg_.wave_wait_s);
+  waves_ = std::make_unique<LaunchWaves>(kids_.size(), kControllers,
+                                         secure() ? cfg_.secure_wave_size : cfg_.wave_size, cfg_.wave_wait_s);
   spawn_wave(waves_->first());
   print_external_commands();
   fifo_ = std::make_unique<ControlFifo>(o_.run_dir);
-  log_.info("launching {} processes in waves (discovery server {})", kids_.size(), ds_->address());
+  log_.info("launching {} processes in waves (discovery {})", kids_.size(),
+            ds_ ? "server " + ds_->address() : std::string("simple, secure domain"));
   if (o_.progress)
     std::fprintf(stderr, "maptr: launched %zu processes (%d agents, 2 groups, central, plant)\n",
                  kids_.size(), sc_.robot.agents);
@@ -237,20 +268,51 @@ std::string Fleet::not_ready() const {
   return missing;
 }
 
+void Fleet::rematch_unready() {
+  // Before the run starts: end and start again, with the next participant id of its window,
+  // every started process that is not ready; the plant (ready once it matched everyone) only
+  // when it is the last one. SIGTERM, not SIGKILL: a process killed inside a shared-memory
+  // operation leaves its lock held and the others' transport aborts.
+  std::vector<Child*> unready;
+  for (std::size_t i = 0; i < waves_->started(); ++i) {
+    Child& c = kids_[i];
+    if (!c.external && c.running && !ready_names_.count(c.name)) unready.push_back(&c);
+  }
+  if (unready.size() > 1)
+    unready.erase(
+        std::remove_if(unready.begin(), unready.end(), [](Child* c) { return c->kind == ChildKind::kPlant; }),
+        unready.end());
+  for (Child* c : unready) {
+    stop_process(c->pid, cfg_.end_term_s);
+    c->running = false;
+    spawn_child(*c);
+    log_.warn("secure domain: {} did not match the fleet within {:.0f} s; started again (pid {})", c->name,
+              cfg_.secure_rematch_s, c->pid);
+  }
+  write_fleet();
+  last_progress_ = Clock::now();
+}
+
 bool Fleet::discover() {
   seen_ = signal_.count();
-  const double timeout = cfg_.discovery_timeout_s(sc_.robot.agents);
+  const double timeout =
+      cfg_.discovery_timeout_s(sc_.robot.agents) * (secure() ? cfg_.secure_discovery_factor : 1.0);
+  last_progress_ = Clock::now();
   while (ready_names_.size() < kids_.size()) {
     seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
+    const std::size_t before = ready_names_.size();
     take_ready();
+    if (ready_names_.size() != before) last_progress_ = Clock::now();
     reap(false);
     std::vector<bool> ready(kids_.size());
     for (std::size_t i = 0; i < kids_.size(); ++i)
       ready[i] = kids_[i].external || ready_names_.count(kids_[i].name);
     if (const auto r = waves_->next(ready, since(last_wave_)); !r.empty()) {
       spawn_wave(r);
+      last_progress_ = Clock::now();
       log_.info("launched agents up to {} of {}", r.end - kControllers, kids_.size() - kControllers);
     }
+    if (secure() && since(last_progress_) > cfg_.secure_rematch_s) rematch_unready();
     bool early_death = false;
     for (std::size_t i = 0; i < waves_->started(); ++i)
       if (!kids_[i].running && !kids_[i].external) early_death = true;
@@ -288,12 +350,12 @@ void Fleet::end() {
   stop_recorder();
   fifo_.reset();
   participant_.reset();
-  ds_->stop(cfg_.discovery_term_s);  // the discovery server goes last
-  clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_id_), ds_->port(), log_);
+  if (ds_) ds_->stop(cfg_.discovery_term_s);  // the discovery server goes last
+  clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_id_), ds_ ? ds_->port() : 0, log_);
 }
 
 nlohmann::json Fleet::summary() {
-  rec_.discovery_restarts = ds_->restarts();
+  rec_.discovery_restarts = ds_ ? ds_->restarts() : 0;
   rec_.last_tick = clock_.state();
   rec_.failures = schedule_.records();
   rec_.launcher_rejected = clock_.rejected();

@@ -56,6 +56,10 @@ class Fleet {
   void start_recorder();
   void await_recorder();
   void stop_recorder();
+  void make_secure_domain();
+  void rematch_unready();
+  void learn_secure_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
+  bool secure() const { return o_.secure; }
   void write_fleet() const;
   void spawn_child(Child& c);
   void spawn_wave(LaunchWaves::Range r);
@@ -84,7 +88,7 @@ class Fleet {
   RunRecord rec_;
   Environment env_;
   ParticipantIds ids_;
-  std::unique_ptr<DiscoveryServer> ds_;
+  std::unique_ptr<DiscoveryServer> ds_;  ///< none on a secure domain (simple discovery)
   comm::Signal signal_;
   comm::Inbox<msg::NodeReady> ready_{signal_};
   comm::Inbox<msg::PlantTick> ticks_{signal_, comm::Wake::kNever};  // polled: no wake-up per tick
@@ -100,7 +104,7 @@ class Fleet {
   FaultSchedule schedule_;
   PlantClock clock_;
   std::set<std::string> ready_names_;
-  Clock::time_point t_launch_, t_run_, last_wave_, last_print_;
+  Clock::time_point t_launch_, t_run_, last_wave_, last_print_, last_progress_;
   uint64_t seen_ = 0, member_seq_ = 0, control_seq_ = 1;
   bool plant_done_ = false;
   long reported_rejected_ = 0;

@@ -48,7 +48,7 @@ void Fleet::publish_member(const Child& c, msg::MemberEvent kind) {
 
 void Fleet::reap(bool expected) {
   bool started = false;
-  if (!expected && ds_->restart_if_due(env_, ids_, started)) {
+  if (!expected && ds_ && ds_->restart_if_due(env_, ids_, started)) {
     if (started)
       log_.info("the discovery server runs again (pid {})", ds_->pid());
     else
@@ -58,7 +58,7 @@ void Fleet::reap(bool expected) {
 }
 
 void Fleet::on_exit(const Exit& e, bool expected) {
-  if (ds_->on_exit(e, expected)) {
+  if (ds_ && ds_->on_exit(e, expected)) {
     // Established matches survive; the restarted server lets the clients re-register.
     if (!expected)
       log_.warn("the discovery server (pid {}) died: exit {} signal {}; starting it again", e.pid,
@@ -94,10 +94,10 @@ void Fleet::apply_fault(const config::FaultSpec& f, double at_s) {
   const bool discovery = f.target == kDiscoveryTarget;
   Child* c = discovery ? nullptr : find(f.target);
   TargetState s;
-  if (discovery) s = {true, false, ds_->running()};
+  if (discovery && ds_) s = {true, false, ds_->running()};
   if (c) s = {true, c->external, c->running};
   const FaultAction a = decide_fault(f, s);
-  if (a.kind == FaultAction::kKill && discovery) {
+  if (a.kind == FaultAction::kKill && discovery && ds_) {
     ds_->kill_now();
     log_.warn("fault: killed the discovery server (pid {}) at t={:.2f} s", ds_->pid(), at_s);
   } else if (a.kind == FaultAction::kKill) {
@@ -151,9 +151,11 @@ void Fleet::open_gate(const msg::FaultGate& g) {
 }
 
 void Fleet::take_ticks() {
-  for (auto& [t, h] : ticks_.drain())
+  for (auto& [t, h] : ticks_.drain()) {
+    learn_secure_plant(h);
     clock_.on_tick(writer_prefix(h), {t.t(), t.v_x(), t.energy_J(), t.sides()[msg::SIDE_L].n_active(),
                                       t.sides()[msg::SIDE_R].n_active()});
+  }
 }
 
 void Fleet::take_commands() {
@@ -191,6 +193,7 @@ void Fleet::run() {
     take_ticks();
     take_commands();
     for (auto& [g, h] : gates_.drain()) {
+      learn_secure_plant(h);
       if (!clock_.from_plant(writer_prefix(h))) continue;
       clock_.on_gate(g.t());
       open_gate(g);

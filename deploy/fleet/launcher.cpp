@@ -2,6 +2,8 @@
 
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/children.hpp"
+#include "deploy/fleet/config.hpp"
+#include "deploy/fleet/fault_schedule.hpp"
 #include "deploy/fleet/fleet.hpp"
 #include "deploy/report/run_plot.hpp"
 
@@ -19,6 +21,21 @@ std::string domain_problem(int domain, int agents) {
          std::to_string(last_id + 1) + " DDS participants, whose ports would go up to " +
          std::to_string(*comm::rtps_ports(domain, last_id).rbegin()) +
          ", above 65535; use a domain from 0 to " + std::to_string(highest);
+}
+
+std::string secure_problem(const LaunchOptions& o) {
+  if (!o.secure) return "";
+  for (const auto& f : o.scenario.faults)
+    if (f.target == fleet::kDiscoveryTarget)
+      return "--secure: faults[] target 'discovery': a secure fleet uses simple discovery and has no "
+             "discovery server to " +
+             f.action;
+  const int max_agents = fleet::FleetConfig{}.shm_max_agents;
+  if (o.transport == "udp" || o.scenario.robot.agents > max_agents)
+    return "--secure: the fleet runs on shared memory (up to " + std::to_string(max_agents) +
+           " agents, --transport auto or shm): its simple discovery needs multicast, which the loopback "
+           "interface does not carry";
+  return "";
 }
 
 namespace {

@@ -29,7 +29,15 @@ struct LaunchOptions {
   /// lock times out on two cores and aborts the plant with a boost interprocess exception).
   std::string transport = "auto";
   long long chaos_seed = -1;  ///< recorded in the summary when the faults came from --chaos
+  /// A secure domain (deploy/fleet/secure_domain.hpp): a private CA, one certificate and
+  /// permissions document per process in RUN_DIR/security; simple discovery (no discovery
+  /// server: Fast DDS 2.9 has none with DDS Security).
+  bool secure = false;
 };
+
+/// Why options `o` cannot run together (e.g. --secure with a fault of the discovery server it
+/// does not start), or "" if they can; the message names the options.
+std::string secure_problem(const LaunchOptions& o);
 
 /// Sends "kill NAME" or "restart NAME" to the launcher running in run_dir (through its
 /// control FIFO). Throws std::runtime_error when no fleet runs there.
