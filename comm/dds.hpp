@@ -25,6 +25,8 @@
 #include <utility>
 #include <vector>
 
+#include "comm/checked_type.hpp"
+
 namespace maptr::comm {
 
 /// How a participant finds the others.
@@ -82,7 +84,8 @@ struct LivelinessEvent {
   bool alive = false;
 };
 
-/// Reader listener that takes every valid sample into a queue and signals the loop.
+/// Reader listener that takes every valid sample into a queue and signals the loop; a payload
+/// that does not deserialize (CheckedType) is dropped and counted.
 template <class T>
 class Inbox : public eprosima::fastdds::dds::DataReaderListener {
  public:
@@ -92,7 +95,13 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
     T sample;
     eprosima::fastdds::dds::SampleInfo info;
     bool any = false;
+    t_deserialize_failed = false;
     while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (last_deserialize_failed()) {
+        undecodable_.fetch_add(1);
+        t_deserialize_failed = false;
+        continue;
+      }
       if (!info.valid_data) continue;
       std::lock_guard<std::mutex> g(m_);
       q_.emplace_back(sample, info.publication_handle);
@@ -133,6 +142,8 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
     return out;
   }
   int matched() const { return matched_.load(); }
+  /// Samples dropped so far because their payload did not deserialize.
+  uint64_t undecodable() const { return undecodable_.load(); }
 
  private:
   Signal& signal_;
@@ -140,6 +151,7 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
   std::deque<std::pair<T, eprosima::fastrtps::rtps::InstanceHandle_t>> q_;
   std::deque<LivelinessEvent> live_;
   std::atomic<int> matched_{0};
+  std::atomic<uint64_t> undecodable_{0};
 };
 
 /// Writer listener that counts matched readers.
@@ -168,11 +180,11 @@ class Participant {
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
 
-  /// Registers type T (a fastddsgen PubSubType) once and returns the topic (the same one on
-  /// every call with the same name).
+  /// Registers type T (a fastddsgen PubSubType, whose deserialize never throws here:
+  /// CheckedType) once and returns the topic (the same one on every call with the same name).
   template <class PubSubType>
   eprosima::fastdds::dds::Topic* topic(const std::string& name) {
-    eprosima::fastdds::dds::TypeSupport ts(new PubSubType());
+    eprosima::fastdds::dds::TypeSupport ts(new CheckedType<PubSubType>());
     return make_topic(name, ts);
   }
 
