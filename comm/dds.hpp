@@ -25,6 +25,8 @@
 #include <utility>
 #include <vector>
 
+#include "comm/checked_type.hpp"
+
 namespace maptr::comm {
 
 /// How a participant finds the others.
@@ -104,7 +106,8 @@ enum class Wake {
   kNever,    ///< never: the loop polls it (samples it only looks at now and then)
 };
 
-/// Reader listener that takes every valid sample into a queue and wakes the loop as `wake` says.
+/// Reader listener that takes every valid sample into a queue and wakes the loop as `wake` says;
+/// a payload that does not deserialize (CheckedType) is dropped and counted.
 template <class T>
 class Inbox : public eprosima::fastdds::dds::DataReaderListener {
  public:
@@ -114,7 +117,13 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
     T sample;
     eprosima::fastdds::dds::SampleInfo info;
     uint64_t n = 0;
+    t_deserialize_failed = false;
     while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (last_deserialize_failed()) {
+        undecodable_.fetch_add(1);
+        t_deserialize_failed = false;
+        continue;
+      }
       if (!info.valid_data) continue;
       std::lock_guard<std::mutex> g(m_);
       q_.emplace_back(sample, info.publication_handle);
@@ -159,6 +168,11 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
     return out;
   }
   int matched() const { return matched_.load(); }
+  /// Samples dropped so far because their payload did not deserialize.
+  uint64_t undecodable() const { return undecodable_.load(); }
+
+ protected:
+  void count_undecodable() { undecodable_.fetch_add(1); }
 
  private:
   Signal& signal_;
@@ -167,6 +181,7 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
   std::deque<std::pair<T, eprosima::fastrtps::rtps::InstanceHandle_t>> q_;
   std::deque<LivelinessEvent> live_;
   std::atomic<int> matched_{0};
+  std::atomic<uint64_t> undecodable_{0};
 };
 
 /// Reader listener that hands each valid sample straight to a handler on the DDS receive thread,
@@ -195,8 +210,15 @@ class Direct : public Inbox<T> {
     }
     T sample;
     eprosima::fastdds::dds::SampleInfo info;
-    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK)
+    t_deserialize_failed = false;
+    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (last_deserialize_failed()) {
+        Inbox<T>::count_undecodable();
+        t_deserialize_failed = false;
+        continue;
+      }
       if (info.valid_data) handler_(sample, info.publication_handle);
+    }
   }
 
  private:
@@ -232,11 +254,11 @@ class Participant {
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
 
-  /// Registers type T (a fastddsgen PubSubType) once and returns the topic (the same one on
-  /// every call with the same name).
+  /// Registers type T (a fastddsgen PubSubType, whose deserialize never throws here:
+  /// CheckedType) once and returns the topic (the same one on every call with the same name).
   template <class PubSubType>
   eprosima::fastdds::dds::Topic* topic(const std::string& name) {
-    eprosima::fastdds::dds::TypeSupport ts(new PubSubType());
+    eprosima::fastdds::dds::TypeSupport ts(new CheckedType<PubSubType>());
     return make_topic(name, ts);
   }
 

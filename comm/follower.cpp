@@ -1,24 +1,10 @@
 #include "comm/follower.hpp"
 
-#include "comm/fleet_guid.hpp"
-
 #include <unistd.h>
 
-#include <cmath>
+#include "comm/fleet_guid.hpp"
 
 namespace maptr::comm {
-
-bool tick_valid(const msg::PlantTick& t, std::size_t per_side) {
-  for (double v : {t.t(), t.dt(), t.x(), t.y(), t.theta(), t.v_x(), t.w(), t.energy_J(), t.distance_m()})
-    if (!std::isfinite(v)) return false;
-  for (const msg::SideTick& s : t.sides()) {
-    for (double v : {s.phidot(), s.battery_V(), s.discharge_mAh(), s.phidot_ref(), s.V_active()})
-      if (!std::isfinite(v)) return false;
-    if (s.active().size() != per_side || s.live().size() != per_side || s.battery_V() < 0 || s.V_active() < 0)
-      return false;
-  }
-  return true;
-}
 
 TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
                            std::shared_ptr<spdlog::logger> log)
@@ -47,14 +33,14 @@ void TickFollower::on_sample(const msg::PlantTick& t, const eprosima::fastrtps::
     return;
   }
   const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
-  const bool valid = tick_valid(t, per_side);
+  const TickVerdict v = classify_tick(t, per_side, last_tick_);
   // The plant sends a tick again for a restarted member or when answers are missing: answer
   // the copy with the same answer (the plant takes an answer once).
-  if (valid && static_cast<long long>(t.tick()) == last_tick_) {
+  if (v == TickVerdict::kRepeat) {
     if (resend_ && answered_tick_ == last_tick_) resend_();
     return;
   }
-  if (!valid || static_cast<long long>(t.tick()) <= last_tick_) {
+  if (v == TickVerdict::kRejected) {
     const uint64_t n = ++rejected_;
     log_->warn("rejected a malformed or stale tick {} ({} so far)", t.tick(), n);
     return;

@@ -15,12 +15,10 @@
 #include <optional>
 
 #include "comm/process.hpp"
+#include "comm/tick_check.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::comm {
-
-/// True when every number in the tick is finite and every mask has one entry per agent of a side.
-bool tick_valid(const msg::PlantTick& t, std::size_t per_side);
 
 class TickFollower {
  public:
@@ -46,8 +44,8 @@ class TickFollower {
   /// Calls on_tick for each valid new tick of the running run; returns the exit code.
   int run(const std::function<void(const msg::PlantTick&)>& on_tick);
 
-  /// Ticks dropped as malformed or stale so far.
-  uint64_t rejected() const { return rejected_.load(); }
+  /// Ticks dropped as malformed, stale, undecodable or not from the plant so far.
+  uint64_t rejected() const { return rejected_.load() + ticks_.undecodable(); }
 
  private:
   const ProcessArgs& args_;

@@ -102,8 +102,10 @@ class SkipEvents : public YAML::EventHandler {
 };
 
 /// True if the text holds a second document. (Reads at most two: yaml-cpp's LoadAll can loop
-/// forever on some malformed input.)
+/// forever on some malformed input.) A second document needs a document marker ("---", or
+/// "..." before a bare one): without either, the text is not parsed again.
 bool has_second_document(const std::string& text) {
+  if (text.find("---") == std::string::npos && text.find("...") == std::string::npos) return false;
   std::istringstream in(text);
   YAML::Parser parser(in);
   SkipEvents skip;

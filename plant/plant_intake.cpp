@@ -165,7 +165,7 @@ int PlantLoop::report(bool stopped) {
   in.loop_wall_s = wall;
   in.live_agents[0] = e.live_agents[0];
   in.live_agents[1] = e.live_agents[1];
-  in.rejected_samples = rejected_;
+  in.rejected_samples = own_rejects();
   in.rejected_by_process = rejects_by_process();
   in.missed_deadlines = missed_deadlines_;
   in.tick_repairs = repairs_;

@@ -22,18 +22,6 @@ int count(const std::vector<uint8_t>& m) {
   return n;
 }
 
-/// What a MembershipEvent says, for the DDS-free membership (kOther: a value this build does not
-/// know).
-LauncherEvent launcher_event(msg::MemberEvent kind) {
-  switch (kind) {
-    case msg::MEMBER_DIED:
-      return LauncherEvent::kDied;
-    case msg::MEMBER_STARTED:
-      return LauncherEvent::kStarted;
-  }
-  return LauncherEvent::kOther;
-}
-
 sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConfig& c) {
   sim::PlantCoreConfig pc;
   pc.robot = sc.robot;
@@ -213,8 +201,13 @@ bool PlantLoop::sent_by(const Handle& writer, int base_id) const {
   return fleet == 0 || comm::written_by_id(fleet, sc_.robot.agents, writer, base_id);
 }
 
+uint64_t PlantLoop::own_rejects() const {
+  return rejected_ + replies_.undecodable() + groups_.undecodable() + centrals_.undecodable() +
+         members_.undecodable() + controls_.undecodable();
+}
+
 std::map<std::string, uint64_t> PlantLoop::rejects_by_process() const {
-  std::map<std::string, uint64_t> m{{"plant", rejected_}, {"central", central_rejects_}};
+  std::map<std::string, uint64_t> m{{"plant", own_rejects()}, {"central", central_rejects_}};
   for (int s = 0; s < 2; ++s) {
     m[s == msg::SIDE_L ? "group-L" : "group-R"] = group_rejects_[s];
     for (int j = 0; j < per_side_; ++j) m[config::agent_name(s, j)] = agent_rejects_[s][static_cast<std::size_t>(j)];

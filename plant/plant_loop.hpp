@@ -90,6 +90,8 @@ class PlantLoop {
   bool sent_by(const Handle& writer, int base_id) const;
   /// Samples dropped by each process: the plant's own and what each follower last reported.
   std::map<std::string, uint64_t> rejects_by_process() const;
+  /// Samples the plant itself dropped (checks failed, or a payload that did not deserialize).
+  uint64_t own_rejects() const;
   void wait(std::chrono::milliseconds at_most);
   /// Sleeps until every late member's answer may have arrived (one wake-up, not one per sample),
   /// a membership event, or `at_most`.

@@ -17,7 +17,20 @@ bool valid(const msg::GroupStatus& g, const SampleLimits& l) {
 bool valid(const msg::CentralCommand& c, const SampleLimits& l) {
   for (double ref : c.phidot_ref())
     if (!std::isfinite(ref) || std::fabs(ref) >= l.ref_bound_radps) return false;
+  // A relayed count is the other side's active agents: at most a side's agents.
+  for (unsigned short n : c.relay_count_for())
+    if (n > l.per_side) return false;
   return true;
+}
+
+LauncherEvent launcher_event(msg::MemberEvent kind) {
+  switch (kind) {
+    case msg::MEMBER_DIED:
+      return LauncherEvent::kDied;
+    case msg::MEMBER_STARTED:
+      return LauncherEvent::kStarted;
+  }
+  return LauncherEvent::kOther;
 }
 
 bool drives(const msg::AgentReply& r) {

@@ -1,10 +1,11 @@
 #pragma once
 // Sample validation: pure checks of the samples the plant takes, on the IDL types, free of
 // the node. A sample is malformed when a field is out of its range (side, index, mask
-// length), not finite, or physically impossible (a voltage outside [0, battery + tolerance],
-// a wheel-speed reference beyond its bound); a well-formed sample still counts only for the
+// length, a count above a side's agents), not finite, or physically impossible (a voltage outside [0, battery
+// + tolerance], a wheel-speed reference beyond its bound); a well-formed sample still counts only for the
 // tick it answers.
 #include "idl/maptr.h"
+#include "plant/membership.hpp"
 
 namespace maptr::plant {
 
@@ -19,6 +20,10 @@ struct SampleLimits {
 bool valid(const msg::AgentReply& r, const SampleLimits& l);
 bool valid(const msg::GroupStatus& g, const SampleLimits& l);
 bool valid(const msg::CentralCommand& c, const SampleLimits& l);
+
+/// What a MembershipEvent says, for the DDS-free membership (kOther: a value this build does
+/// not know).
+LauncherEvent launcher_event(msg::MemberEvent kind);
 
 /// True when the agent's state drives its motor over the tick (active, holding or stopping).
 bool drives(const msg::AgentReply& r);

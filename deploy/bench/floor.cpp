@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "deploy/bench/proc_stats.hpp"
+
 namespace maptr::deploy {
 
 namespace {
@@ -19,35 +21,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr int kMessageBytes = 4;
 
-/// Context switches (voluntary + involuntary) of a process so far, from /proc.
-long context_switches(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
-  long total = 0;
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("voluntary_ctxt_switches:", 0) == 0 || line.rfind("nonvoluntary_ctxt_switches:", 0) == 0)
-      total += std::stol(line.substr(line.find(':') + 1));
-  return total;
-}
+/// Context switches (voluntary + involuntary) of a single-threaded process so far.
+long context_switches(pid_t pid) { return static_cast<long>(read_main_thread_ctx_switches(pid).value_or(0)); }
 
-/// User + system CPU of a process so far, µs, from /proc (clock-tick resolution).
+/// User + system CPU of a process so far, µs (clock-tick resolution).
 double cpu_us(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto close = text.rfind(')');
-  if (close == std::string::npos) return 0.0;
-  std::vector<std::string> f;
-  std::string cur;
-  for (char c : text.substr(close + 2)) {
-    if (c == ' ') {
-      f.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  // Fields after the command: state is f[0]; utime and stime are fields 14 and 15 of the file.
-  if (f.size() < 13) return 0.0;
-  return (std::stod(f[11]) + std::stod(f[12])) * 1e6 / static_cast<double>(sysconf(_SC_CLK_TCK));
+  const auto c = read_proc_counters(pid);
+  return c ? c->cpu_s * 1e6 : 0.0;
 }
 
 [[noreturn]] void worker(int in, int out) {

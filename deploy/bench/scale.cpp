@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "deploy/bench/bench_parts.hpp"
+#include "deploy/bench/cost_watch.hpp"
 #include "deploy/bench/floor.hpp"
 #include "deploy/bench/memory.hpp"
 #include "deploy/experiments/isolated_launch.hpp"
@@ -32,28 +33,30 @@ constexpr int kAnswersBesideAgents = 3;
 
 /// The columns of scale.csv (kB, µs) and of scale.md (MB, ms).
 std::vector<report::Column> columns() {
-  return {{"agents", "N", 0},
-          {"status", "status", -1, false, true},
-          {"status_text", "status", -1, true, false},
-          {"discovery_s", "discovery s", 2},
-          {"ticks_per_wall_s", "ticks / wall s", 1},
-          {"real_time_factor", "RTF (100 Hz)", 2},
-          {"cpu_s_per_sim_s", "CPU s / sim s", 2},
-          {"pss_agent_median_kB", "", 0, false, true},
-          {"pss_agent_median_MB", "PSS agent median MB", 1, true, false},
-          {"pss_agent_max_kB", "", 0, false, true},
-          {"pss_agent_max_MB", "PSS agent max MB", 1, true, false},
-          {"pss_total_kB", "", 0, false, true},
-          {"pss_total_MB", "PSS total MB", 0, true, false},
-          {"samples_per_tick", "DDS samples / tick", 0},
-          {"tick_median_us", "", 0, false, true},
-          {"tick_median_ms", "tick median ms", 2, true, false},
-          {"tick_p99_us", "", 0, false, true},
-          {"tick_p99_ms", "tick p99 ms", 2, true, false},
-          {"floor_median_us", "floor median µs", 0},
-          {"x_floor", "tick / floor", 1},
-          {"floor_cs_per_round", "floor cs / round", 1},
-          {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
+  std::vector<report::Column> cols = {{"agents", "N", 0},
+                                      {"status", "status", -1, false, true},
+                                      {"status_text", "status", -1, true, false},
+                                      {"discovery_s", "discovery s", 2},
+                                      {"ticks_per_wall_s", "ticks / wall s", 1},
+                                      {"real_time_factor", "RTF (100 Hz)", 2},
+                                      {"cpu_s_per_sim_s", "CPU s / sim s", 2},
+                                      {"pss_agent_median_kB", "", 0, false, true},
+                                      {"pss_agent_median_MB", "PSS agent median MB", 1, true, false},
+                                      {"pss_agent_max_kB", "", 0, false, true},
+                                      {"pss_agent_max_MB", "PSS agent max MB", 1, true, false},
+                                      {"pss_total_kB", "", 0, false, true},
+                                      {"pss_total_MB", "PSS total MB", 0, true, false},
+                                      {"samples_per_tick", "DDS samples / tick", 0},
+                                      {"tick_median_us", "", 0, false, true},
+                                      {"tick_median_ms", "tick median ms", 2, true, false},
+                                      {"tick_p99_us", "", 0, false, true},
+                                      {"tick_p99_ms", "tick p99 ms", 2, true, false},
+                                      {"floor_median_us", "floor median µs", 0},
+                                      {"x_floor", "tick / floor", 1},
+                                      {"floor_cs_per_round", "floor cs / round", 1},
+                                      {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
+  for (const auto& c : fleet_cost_columns()) cols.push_back({c.key, c.head, c.prec});
+  return cols;
 }
 
 /// The plots of scale.png, by column name.
@@ -106,10 +109,13 @@ json measure(const BenchOptions& o, int n) {
   const std::string run_dir = o.out + "/runs/N" + std::to_string(n);
   const config::Scenario s = scale_scenario(o, n);
   FleetMemory mem;
+  FleetCost cost;
   const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
-  const records::Summary sum(
-      launch_isolated({s, run_dir, o.bin_dir, o.domain, run_dir + "/maptr.out"},
-                      [&](const std::atomic<bool>& done) { mem = sample_memory(run_dir, done); }));
+  const records::Summary sum(launch_isolated({s, run_dir, o.bin_dir, o.domain, run_dir + "/maptr.out"},
+                                             [&](const std::atomic<bool>& done) {
+                                               mem = sample_memory(run_dir, done);
+                                               cost = watch_fleet_cost(run_dir, cost_window(s.ticks()), done);
+                                             }));
   const double cpu = cpu_seconds(RUSAGE_CHILDREN) - cpu0;
   const double sim = sum.number_or(records::summary_key::kSimTime, 0),
                wall = sum.number_or(records::summary_key::kWallTime, 0);
@@ -119,29 +125,32 @@ json measure(const BenchOptions& o, int n) {
   const FloorResult floor = measure_floor(n + kAnswersBesideAgents);
   const long pss_max =
       mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
-  return {{"agents", n},
-          {"status", status.substr(0, status.find(':'))},
-          {"status_full", status},
-          {"status_text", status.size() > kStatusMdChars ? status.substr(0, kStatusMdChars) + "..." : status},
-          {"discovery_s", sum.number_or(records::summary_key::kDiscovery, 0)},
-          {"ticks_per_wall_s", wall > 0 ? sum.number_or(records::summary_key::kTicks, 0) / wall : 0.0},
-          {"real_time_factor", sum.number_or(records::summary_key::kRealTimeFactor, 0)},
-          {"cpu_s_per_sim_s", sim > 0 ? cpu / sim : 0.0},
-          {"pss_agent_median_kB", median(mem.agent_pss_kB)},
-          {"pss_agent_median_MB", median(mem.agent_pss_kB) / kKiB},
-          {"pss_agent_max_kB", pss_max},
-          {"pss_agent_max_MB", pss_max / kKiB},
-          {"pss_total_kB", mem.total_pss_kB},
-          {"pss_total_MB", mem.total_pss_kB / kKiB},
-          {"samples_per_tick", n + 4},  // one PlantTick, N AgentReply, 2 GroupStatus, 1 CentralCommand
-          {"tick_median_us", tick.median},
-          {"tick_median_ms", tick.median / 1000.0},
-          {"tick_p99_us", tick.p99},
-          {"tick_p99_ms", tick.p99 / 1000.0},
-          {"floor_median_us", floor.median_us},
-          {"x_floor", floor.median_us > 0 ? tick.median / floor.median_us : 0.0},
-          {"floor_cs_per_round", floor.ctx_switches_per_round},
-          {"floor_cpu_us_per_round", floor.cpu_us_per_round}};
+  json row = {
+      {"agents", n},
+      {"status", status.substr(0, status.find(':'))},
+      {"status_full", status},
+      {"status_text", status.size() > kStatusMdChars ? status.substr(0, kStatusMdChars) + "..." : status},
+      {"discovery_s", sum.number_or(records::summary_key::kDiscovery, 0)},
+      {"ticks_per_wall_s", wall > 0 ? sum.number_or(records::summary_key::kTicks, 0) / wall : 0.0},
+      {"real_time_factor", sum.number_or(records::summary_key::kRealTimeFactor, 0)},
+      {"cpu_s_per_sim_s", sim > 0 ? cpu / sim : 0.0},
+      {"pss_agent_median_kB", median(mem.agent_pss_kB)},
+      {"pss_agent_median_MB", median(mem.agent_pss_kB) / kKiB},
+      {"pss_agent_max_kB", pss_max},
+      {"pss_agent_max_MB", pss_max / kKiB},
+      {"pss_total_kB", mem.total_pss_kB},
+      {"pss_total_MB", mem.total_pss_kB / kKiB},
+      {"samples_per_tick", n + 4},  // one PlantTick, N AgentReply, 2 GroupStatus, 1 CentralCommand
+      {"tick_median_us", tick.median},
+      {"tick_median_ms", tick.median / 1000.0},
+      {"tick_p99_us", tick.p99},
+      {"tick_p99_ms", tick.p99 / 1000.0},
+      {"floor_median_us", floor.median_us},
+      {"x_floor", floor.median_us > 0 ? tick.median / floor.median_us : 0.0},
+      {"floor_cs_per_round", floor.ctx_switches_per_round},
+      {"floor_cpu_us_per_round", floor.cpu_us_per_round}};
+  row.update(fleet_cost_json(cost));
+  return row;
 }
 
 int replot(const BenchOptions& o) {

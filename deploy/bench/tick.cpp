@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "deploy/bench/bench_parts.hpp"
+#include "deploy/bench/cost_watch.hpp"
 #include "deploy/bench/floor.hpp"
 #include "deploy/experiments/isolated_launch.hpp"
 #include "deploy/report/table.hpp"
@@ -34,6 +35,15 @@ std::string timing_md(const records::Summary& sum) {
   }
   return t.md();
 }
+/// Context switches and CPU per tick by process kind, over the measured window.
+std::string cost_md(const FleetCost& c) {
+  if (!c.measured) return "Cost per process kind: not measured (the run ended before its window).\n";
+  report::Table t;
+  for (const auto& col : fleet_cost_columns()) t.cols.push_back({col.key, col.head, col.prec});
+  t.rows.push_back(fleet_cost_json(c));
+  return "Cost per tick by process kind, from /proc over a window of " + std::to_string(c.ticks) +
+         " ticks (cs: context switches, over all threads):\n\n" + t.md();
+}
 }  // namespace
 
 int bench_tick(const BenchOptions& o) {
@@ -45,7 +55,11 @@ int bench_tick(const BenchOptions& o) {
   s.name = "tick-" + std::to_string(n);
   s.validate();
   const std::string run_dir = o.out + "/runs/tick-N" + std::to_string(n);
-  const records::Summary sum(launch_isolated({s, run_dir, o.bin_dir, o.domain, ""}));
+  FleetCost cost;
+  const records::Summary sum(
+      launch_isolated({s, run_dir, o.bin_dir, o.domain, ""}, [&](const std::atomic<bool>& done) {
+        cost = watch_fleet_cost(run_dir, cost_window(s.ticks()), done);
+      }));
   const FloorResult floor = measure_floor(n + 3);  // agents, 2 groups and central answer each tick
   const double tick_us = sum.tick_timing("tick").median;
   std::ostringstream md;
@@ -55,8 +69,9 @@ int bench_tick(const BenchOptions& o) {
      << timing_md(sum) << "\nIPC floor (hub and " << floor.workers << " processes over pipes, "
      << floor.rounds << " rounds): median " << floor.median_us << " µs, p99 " << floor.p99_us << " µs, "
      << floor.ctx_switches_per_round << " context switches and " << floor.cpu_us_per_round
-     << " µs CPU per round. The fleet's median tick is " << (floor.median_us > 0 ? tick_us / floor.median_us : 0.0)
-     << " x floor.\n";
+     << " µs CPU per round. The fleet's median tick is "
+     << (floor.median_us > 0 ? tick_us / floor.median_us : 0.0) << " x floor.\n\n"
+     << cost_md(cost);
   std::filesystem::create_directories(o.out);
   report::write_file(o.out + "/tick.md", md.str());
   report::write_file(o.out + "/tick.json", sum.tick_timing_json().dump(2) + "\n");

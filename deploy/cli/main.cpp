@@ -1,10 +1,11 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|level2|experiment|bench|kill|restart|top|replay|plot`).
+// dispatches (`maptr run|level2|experiment|bench|fuzz|kill|restart|top|replay|plot`).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 
 #include "deploy/cli/fleet_signal.hpp"
+#include "deploy/cli/fuzz_command.hpp"
 #include "deploy/cli/level2_command.hpp"
 #include "deploy/cli/paths.hpp"
 #include "deploy/cli/record_commands.hpp"
@@ -21,12 +22,14 @@ int main(int argc, char** argv) {
   Level2Args level2_args;
   ExperimentArgs experiment_args;
   BenchArgs bench_args;
+  FuzzArgs fuzz_args;
   SignalArgs kill_args, restart_args;
   TopArgs top_args;
   auto* run = add_run_command(app, run_args);
   auto* level2 = add_level2_command(app, level2_args);
   auto* experiment = add_experiment_command(app, experiment_args);
   auto* bench = add_bench_command(app, bench_args);
+  auto* fuzz = add_fuzz_command(app, fuzz_args);
   auto* kill = add_signal_command(app, "kill", kill_args);
   auto* restart = add_signal_command(app, "restart", restart_args);
   auto* top = add_top_command(app, top_args);
@@ -47,6 +50,7 @@ int main(int argc, char** argv) {
     if (run->parsed()) return cmd_run(run_args, bin_dir(argv[0]));
     if (experiment->parsed()) return cmd_experiment(experiment_args, bin_dir(argv[0]));
     if (bench->parsed()) return cmd_bench(bench_args, bin_dir(argv[0]));
+    if (fuzz->parsed()) return cmd_fuzz(fuzz_args, bin_dir(argv[0]));
     if (level2->parsed()) return cmd_level2(level2_args);
     if (kill->parsed()) return cmd_signal("kill", kill_args);
     if (restart->parsed()) return cmd_signal("restart", restart_args);

@@ -358,7 +358,8 @@ nlohmann::json Fleet::summary() {
   rec_.discovery_restarts = ds_ ? ds_->restarts() : 0;
   rec_.last_tick = clock_.state();
   rec_.failures = schedule_.records();
-  rec_.launcher_rejected = clock_.rejected();
+  rec_.launcher_rejected = clock_.rejected() + static_cast<long>(ready_.undecodable() + ticks_.undecodable() +
+                                                                 gates_.undecodable());
   const nlohmann::json s = build_summary(sc_, MAPTR_SOURCE_DIR, rec_, o_.run_dir, kids_);
   std::ofstream(o_.run_dir + "/summary.json") << s.dump(2) << "\n";
   log_.info("run ended: {}", s.value("status", ""));

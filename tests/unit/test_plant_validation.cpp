@@ -141,6 +141,23 @@ TEST(PlantValidation, CentralReferenceFiniteAndBounded) {
   EXPECT_TRUE(valid(c, limits()));
 }
 
+TEST(PlantValidation, ARelayedCountAboveASideIsMalformed) {
+  auto c = command();
+  c.relay_count_for({4, 0});  // 4 per side: every agent of the other side active
+  EXPECT_TRUE(valid(c, limits()));
+  for (int s = 0; s < 2; ++s) {
+    c = command();
+    c.relay_count_for()[s] = 5;
+    EXPECT_FALSE(valid(c, limits())) << "side " << s;
+  }
+}
+
+TEST(PlantValidation, MembershipEventKindsMapToTheMembershipsEvents) {
+  EXPECT_EQ(plant::launcher_event(msg::MEMBER_DIED), plant::LauncherEvent::kDied);
+  EXPECT_EQ(plant::launcher_event(msg::MEMBER_STARTED), plant::LauncherEvent::kStarted);
+  EXPECT_EQ(plant::launcher_event(static_cast<msg::MemberEvent>(9)), plant::LauncherEvent::kOther);
+}
+
 TEST(PlantValidation, OnlyTheCurrentTickCounts) {
   EXPECT_EQ(check(reply(), limits(), 7), Verdict::kAccepted);
   EXPECT_EQ(check(reply(), limits(), 8), Verdict::kOtherTick);

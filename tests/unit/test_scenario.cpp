@@ -108,6 +108,11 @@ TEST(Scenario, ADocumentThatIsNotAMappingIsRefused) {
 
 TEST(Scenario, TwoDocumentsAreRefused) { expect_refused("agents: 16\n---\nagents: 32\n", "(top level)"); }
 
+TEST(Scenario, ABareSecondDocumentAfterAnEndMarkerIsRefused) {
+  expect_refused("agents: 16\n...\nagents: 32\n", "(top level)");
+  expect_refused("agents: 16\n...\n---\nagents: 32\n", "(top level)");
+}
+
 TEST(Scenario, InputOnWhichYamlCppLoadAllLoopsIsRefused) { expect_refused(",- b\n", "(top level)"); }
 
 TEST(Scenario, InvalidYamlIsAScenarioError) { expect_refused("agents: [16\n", "not valid YAML"); }

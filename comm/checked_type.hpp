@@ -1,0 +1,33 @@
+#pragma once
+// A fastddsgen PubSubType whose deserialize never throws. The generated code catches only a
+// payload that is too short; fastcdr throws for others (a bad encapsulation header, a boolean
+// other than 0 or 1), and Fast DDS calls deserialize inside DataReader::take, so such a sample
+// from anyone on the domain would end the reading process. Here every refusal returns false,
+// and last_deserialize_failed() tells the thread that called take that the sample it got is
+// not a sample (Fast DDS still marks it as valid data).
+#include <fastcdr/exceptions/Exception.h>
+#include <fastdds/rtps/common/SerializedPayload.h>
+
+namespace maptr::comm {
+
+/// Whether the last deserialize of a CheckedType on this thread refused its payload.
+inline thread_local bool t_deserialize_failed = false;
+
+inline bool last_deserialize_failed() { return t_deserialize_failed; }
+
+template <class Generated>
+class CheckedType : public Generated {
+ public:
+  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override {
+    bool ok = false;
+    try {
+      ok = Generated::deserialize(payload, data);
+    } catch (const eprosima::fastcdr::exception::Exception&) {
+      ok = false;
+    }
+    t_deserialize_failed = !ok;
+    return ok;
+  }
+};
+
+}  // namespace maptr::comm

@@ -1,0 +1,37 @@
+#include "comm/tick_check.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace maptr::comm {
+
+namespace {
+bool side_valid(const msg::SideTick& s, std::size_t per_side) {
+  for (double v : {s.phidot(), s.battery_V(), s.discharge_mAh(), s.phidot_ref(), s.V_active()})
+    if (!std::isfinite(v)) return false;
+  return s.active().size() == per_side && s.live().size() == per_side && s.battery_V() >= 0 &&
+         s.V_active() >= 0 && s.n_active() <= per_side && s.relay_count() <= per_side;
+}
+}  // namespace
+
+bool tick_valid(const msg::PlantTick& t, std::size_t per_side) {
+  for (double v : {t.t(), t.dt(), t.x(), t.y(), t.theta(), t.v_x(), t.w(), t.energy_J(), t.distance_m()})
+    if (!std::isfinite(v)) return false;
+  if (t.run_state() > msg::RUN_ABORTED) return false;
+  for (const msg::SideTick& s : t.sides())
+    if (!side_valid(s, per_side)) return false;
+  return true;
+}
+
+TickVerdict classify_tick(const msg::PlantTick& t, std::size_t per_side, long long last_tick) {
+  if (!tick_valid(t, per_side)) return TickVerdict::kRejected;
+  // Ticks count from 0: one beyond the range of long long is as malformed as a NaN.
+  const unsigned long long k = t.tick();
+  if (k > static_cast<unsigned long long>(std::numeric_limits<long long>::max()))
+    return TickVerdict::kRejected;
+  const long long tick = static_cast<long long>(k);
+  if (tick == last_tick) return TickVerdict::kRepeat;
+  return tick > last_tick ? TickVerdict::kNew : TickVerdict::kRejected;
+}
+
+}  // namespace maptr::comm

@@ -1,0 +1,32 @@
+#pragma once
+// CPU time and context switches of processes, from /proc: user + system time of the whole
+// process (/proc/PID/stat, fields 14 and 15, in clock ticks) and voluntary + nonvoluntary
+// context switches summed over its threads (/proc/PID/task/TID/status: a process's own status
+// counts its main thread only, and a DDS process works in its other threads).
+#include <optional>
+#include <string>
+
+namespace maptr::deploy {
+
+/// utime + stime of a /proc/PID/stat text, clock ticks; nullopt when malformed. The command
+/// (field 2) may hold spaces and parentheses: fields are counted after its last ')'.
+std::optional<long long> parse_stat_cpu_ticks(const std::string& stat);
+
+/// voluntary_ctxt_switches + nonvoluntary_ctxt_switches of a /proc/PID/status text; nullopt
+/// when either line is missing.
+std::optional<long long> parse_status_ctx_switches(const std::string& status);
+
+/// What a process has used so far.
+struct ProcCounters {
+  double cpu_s = 0.0;          ///< user + system, s
+  long long ctx_switches = 0;  ///< voluntary + nonvoluntary, over its live threads
+};
+
+/// A live process's counters; nullopt when it is gone, a zombie, or /proc cannot be read.
+std::optional<ProcCounters> read_proc_counters(long pid);
+
+/// The same for one task's status only (/proc/PID/status: its main thread), as the floor
+/// probe's single-threaded workers need.
+std::optional<long long> read_main_thread_ctx_switches(long pid);
+
+}  // namespace maptr::deploy
