@@ -1,10 +1,11 @@
 #include "comm/follower.hpp"
 
-#include "comm/fleet_guid.hpp"
-
 #include <unistd.h>
 
 #include <cmath>
+
+#include "comm/fleet_guid.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::comm {
 
@@ -17,7 +18,20 @@ bool tick_valid(const msg::PlantTick& t, std::size_t per_side) {
     if (s.active().size() != per_side || s.live().size() != per_side || s.battery_V() < 0 || s.V_active() < 0)
       return false;
   }
-  return true;
+  return t.paused().empty() || t.paused().size() == 2 * per_side + 3;
+}
+
+int paused_slot(const std::string& name, int per_side) {
+  int side = 0, index = 0;
+  if (config::parse_agent_name(name, side, index)) return index < per_side ? side * per_side + index : -1;
+  if (name == "group-L") return 2 * per_side;
+  if (name == "group-R") return 2 * per_side + 1;
+  if (name == "central") return 2 * per_side + 2;
+  return -1;
+}
+
+bool paused_in(const msg::PlantTick& t, int slot) {
+  return slot >= 0 && static_cast<std::size_t>(slot) < t.paused().size() && t.paused()[slot] != 0;
 }
 
 TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
@@ -41,6 +55,7 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
   auto& stop = stop_flag();
   const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
   PlantWatch plant(2.0 * args_.dds.lease_s);
+  const int slot = paused_slot(args_.name, args_.scenario.robot.per_side());
   bool announced = false;
   long long last_tick = -1;
   uint64_t seen = signal_.count();
@@ -72,6 +87,10 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
       }
       last_tick = static_cast<long long>(t.tick());
       plant.heard();
+      if (t.run_state() == msg::RUN_RUNNING && paused_in(t, slot)) {
+        ++skipped_paused_;  // missed while paused: the resume gate's tick is the next to act on
+        continue;
+      }
       if (t.run_state() != msg::RUN_RUNNING) {
         log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted",
                    t.tick());

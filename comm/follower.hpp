@@ -5,8 +5,11 @@
 // (0). The node only says what to answer. A tick counts only if the plant's writer sent it
 // (its fleet GUID prefix; without a fleet id, the first writer heard) and it is newer than the
 // last one; a jump forward is a resynchronisation (after a pause or a restart); an exact copy
-// of the last tick (the plant resends it to a restarted member) is ignored; every other tick
-// (malformed, stale, from another writer) is dropped and counted.
+// of the last tick (the plant resends it to a restarted member) is ignored; a tick whose
+// `paused` mask marks this process (the launcher paused it at a fault gate; it reads the ticks
+// it missed once resumed) is skipped without an answer, so that a resumed process acts first on
+// the tick of its resume gate, as in every run; every other tick (malformed, stale, from
+// another writer) is dropped and counted.
 #include <spdlog/logger.h>
 
 #include <functional>
@@ -18,8 +21,16 @@
 
 namespace maptr::comm {
 
-/// True when every number in the tick is finite and every mask has one entry per agent of a side.
+/// True when every number in the tick is finite, every mask has one entry per agent of a side
+/// and the paused mask is empty or has one entry per member (paused_slot).
 bool tick_valid(const msg::PlantTick& t, std::size_t per_side);
+
+/// A process's entry in PlantTick::paused: agents L0.., R0.., then group-L, group-R, central;
+/// -1 for any other name.
+int paused_slot(const std::string& name, int per_side);
+
+/// True when the tick marks the process of slot `slot` as paused.
+bool paused_in(const msg::PlantTick& t, int slot);
 
 class TickFollower {
  public:
@@ -37,6 +48,8 @@ class TickFollower {
 
   /// Ticks dropped as malformed or stale so far.
   uint64_t rejected() const { return rejected_; }
+  /// Ticks skipped because they mark this process as paused.
+  uint64_t skipped_paused() const { return skipped_paused_; }
 
  private:
   const ProcessArgs& args_;
@@ -50,6 +63,7 @@ class TickFollower {
   eprosima::fastdds::dds::DataWriter* ready_ = nullptr;
   eprosima::fastdds::dds::DataWriter* answer_ = nullptr;
   uint64_t rejected_ = 0;
+  uint64_t skipped_paused_ = 0;
   std::optional<eprosima::fastrtps::rtps::InstanceHandle_t> plant_writer_;
 
   bool from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer);

@@ -43,6 +43,10 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
         cmd_.mask[s][j] = 0;  // never trust a dead agent's assignment
     cmd_.group_stamp[s] = k;
     group_rejects_[s] = g.rejected();
+    const int before = wear_.regressions(s);
+    wear_.on_status(s, g.wear_m(), core_.t());
+    if (wear_.regressions(s) > before)
+      log_.error("group-{}'s wear ledger went backwards at t={:.2f} s", s == 0 ? "L" : "R", core_.t());
   }
 }
 
@@ -138,6 +142,7 @@ int PlantLoop::report(bool stopped) {
   in.missed_deadlines = missed_deadlines_;
   in.declared_dead_by_deadline = declared_dead_;
   in.tick_timing_us = timing_.json();
+  in.group_wear = wear_.json();
   std::ofstream(run_dir_ + "/plant.json") << plant_report(core_, in, membership_.records()).dump(2) << "\n";
   log_.info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", in.status, core_.tick(), core_.t(),
             wall);

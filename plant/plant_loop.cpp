@@ -30,6 +30,10 @@ LauncherEvent launcher_event(msg::MemberEvent kind) {
       return LauncherEvent::kDied;
     case msg::MEMBER_STARTED:
       return LauncherEvent::kStarted;
+    case msg::MEMBER_PAUSED:
+      return LauncherEvent::kPaused;
+    case msg::MEMBER_RESUMED:
+      return LauncherEvent::kResumed;
   }
   return LauncherEvent::kOther;
 }
@@ -190,6 +194,7 @@ void PlantLoop::publish(msg::RunState run_state) {
     side.n_active(static_cast<uint16_t>(count(cmd_.mask[s])));
     side.relay_count(static_cast<uint16_t>(cmd_.relay[s]));
   }
+  t.paused(membership_.paused_mask());
   t.run_state(run_state);
   w_tick_->write(&t);
 }
