@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|level2|experiment|bench|kill|restart`).
+// dispatches (`maptr run|level2|experiment|bench|kill|restart|pause|resume|soak`).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -8,6 +8,7 @@
 #include "deploy/cli/level2_command.hpp"
 #include "deploy/cli/paths.hpp"
 #include "deploy/cli/run_command.hpp"
+#include "deploy/cli/soak_command.hpp"
 #include "deploy/cli/study_commands.hpp"
 
 using namespace maptr::deploy::cli;
@@ -19,13 +20,17 @@ int main(int argc, char** argv) {
   Level2Args level2_args;
   ExperimentArgs experiment_args;
   BenchArgs bench_args;
-  SignalArgs kill_args, restart_args;
+  SignalArgs kill_args, restart_args, pause_args, resume_args;
+  SoakArgs soak_args;
   auto* run = add_run_command(app, run_args);
   auto* level2 = add_level2_command(app, level2_args);
   auto* experiment = add_experiment_command(app, experiment_args);
   auto* bench = add_bench_command(app, bench_args);
   auto* kill = add_signal_command(app, "kill", kill_args);
   auto* restart = add_signal_command(app, "restart", restart_args);
+  auto* pause = add_signal_command(app, "pause", pause_args);
+  auto* resume = add_signal_command(app, "resume", resume_args);
+  auto* soak = add_soak_command(app, soak_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -42,6 +47,9 @@ int main(int argc, char** argv) {
     if (level2->parsed()) return cmd_level2(level2_args);
     if (kill->parsed()) return cmd_signal("kill", kill_args);
     if (restart->parsed()) return cmd_signal("restart", restart_args);
+    if (pause->parsed()) return cmd_signal("pause", pause_args);
+    if (resume->parsed()) return cmd_signal("resume", resume_args);
+    if (soak->parsed()) return cmd_soak(soak_args, bin_dir(argv[0]));
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 1;
