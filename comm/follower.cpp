@@ -85,12 +85,14 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
         log_->warn("rejected a malformed or stale tick {} ({} so far)", t.tick(), rejected_);
         continue;
       }
-      last_tick = static_cast<long long>(t.tick());
       plant.heard();
+      // A tick that marks this process paused is skipped and not taken as the last one: the
+      // plant may send the same tick again without the mark (a resume between two ticks).
       if (t.run_state() == msg::RUN_RUNNING && paused_in(t, slot)) {
-        ++skipped_paused_;  // missed while paused: the resume gate's tick is the next to act on
+        ++skipped_paused_;
         continue;
       }
+      last_tick = static_cast<long long>(t.tick());
       if (t.run_state() != msg::RUN_RUNNING) {
         log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted",
                    t.tick());

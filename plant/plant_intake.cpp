@@ -87,7 +87,11 @@ bool PlantLoop::collect() {
     if (Barrier::complete(membership_) || stop_.load()) break;
     // A restarted member may have matched the tick writer after tick k went out: send it again
     // (unchanged; followers that have it ignore the copy).
-    if (barrier_.resend_due(membership_, now_s())) w_tick_->write(&sent_);
+    // A member resumed between two ticks finds itself no longer marked paused in the copy.
+    if (barrier_.resend_due(membership_, now_s())) {
+      sent_.paused(membership_.paused_mask());
+      w_tick_->write(&sent_);
+    }
     if (barrier_.deadline_passed(now_s())) {
       declared_dead_ += membership_.on_deadline();
       log_membership();

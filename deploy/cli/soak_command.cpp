@@ -161,7 +161,7 @@ ShmCount count_shm(int domain) {
 std::string check_shm(const ShmCount& before, const ShmCount& after) {
   if (after.ports <= before.ports && after.orphan_segments <= before.orphan_segments) return "";
   return "/dev/shm grew: domain port files " + std::to_string(before.ports) + " -> " +
-         std::to_string(after.ports) + ", unmapped segments " + std::to_string(before.orphan_segments) +
+         std::to_string(after.ports) + ", segments without owner " + std::to_string(before.orphan_segments) +
          " -> " + std::to_string(after.orphan_segments);
 }
 
