@@ -45,7 +45,7 @@ AgentNode::AgentNode(const comm::ProcessArgs& args, int side, int index, std::sh
 int AgentNode::run() {
   comm::TickFollower follower(args_, msg::NODE_AGENT, log_);
   follower.answer_writer<msg::AgentReplyPubSubType>(comm::topic::kAgentReply);
-  bool answered_once = false;
+  long long last_tick = -2;  // the tick answered or skipped last
   return follower.run([&](const msg::PlantTick& t) {
     control::AgentInput in;
     in.tick = static_cast<long long>(t.tick());
@@ -69,10 +69,11 @@ int AgentNode::run() {
     rep.state(to_msg(out.state));
     rep.rejected(follower.rejected());
     const int per_side = args_.scenario.robot.per_side();
-    if (in.assigned || !answered_once || comm::idle_answer_due(in.tick, side_, index_, per_side)) {
-      follower.answer(rep);
-      answered_once = true;
-    }
+    // After a gap (the first tick of this process, or the first after a pause) the plant waits
+    // for this agent: it answers whether idle or not.
+    const bool gap = in.tick != last_tick + 1;
+    last_tick = in.tick;
+    if (in.assigned || gap || comm::idle_answer_due(in.tick, side_, index_, per_side)) follower.answer(rep);
   });
 }
 

@@ -3,8 +3,22 @@
 #include <unistd.h>
 
 #include "comm/fleet_guid.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::comm {
+
+int paused_slot(const std::string& name, int per_side) {
+  int side = 0, index = 0;
+  if (config::parse_agent_name(name, side, index)) return index < per_side ? side * per_side + index : -1;
+  if (name == "group-L") return 2 * per_side;
+  if (name == "group-R") return 2 * per_side + 1;
+  if (name == "central") return 2 * per_side + 2;
+  return -1;
+}
+
+bool paused_in(const msg::PlantTick& t, int slot) {
+  return slot >= 0 && static_cast<std::size_t>(slot) < t.paused().size() && t.paused()[slot] != 0;
+}
 
 TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
                            std::shared_ptr<spdlog::logger> log)
@@ -45,8 +59,14 @@ void TickFollower::on_sample(const msg::PlantTick& t, const eprosima::fastrtps::
     log_->warn("rejected a malformed or stale tick {} ({} so far)", t.tick(), n);
     return;
   }
-  last_tick_ = static_cast<long long>(t.tick());
   heard_.store(true);
+  // A tick that marks this process paused is skipped and not taken as the last one: the plant
+  // may send the same tick again without the mark (a resume between two ticks).
+  if (t.run_state() == msg::RUN_RUNNING && paused_in(t, slot_)) {
+    ++skipped_paused_;
+    return;
+  }
+  last_tick_ = static_cast<long long>(t.tick());
   if (t.run_state() != msg::RUN_RUNNING) {
     log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted", t.tick());
     finished_.store(true);
@@ -59,8 +79,10 @@ void TickFollower::on_sample(const msg::PlantTick& t, const eprosima::fastrtps::
 int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick) {
   auto& stop = stop_flag();
   PlantWatch plant(2.0 * args_.dds.lease_s);
+  const int slot = paused_slot(args_.name, args_.scenario.robot.per_side());
   bool announced = false;
   uint64_t seen = signal_.count();
+  slot_ = paused_slot(args_.name, args_.scenario.robot.per_side());
   log_->info("{} up (pid {})", args_.name, getpid());
   // Each tick is answered on the DDS receive thread; this loop watches readiness, the plant's
   // liveliness and the end of the run.

@@ -5,8 +5,11 @@
 // (0). The node only says what to answer. A tick counts only if the plant's writer sent it
 // (its fleet GUID prefix; without a fleet id, the first writer heard) and it is newer than the
 // last one; a jump forward is a resynchronisation (after a pause or a restart); an exact copy
-// of the last tick (the plant resends it to a restarted member) is ignored; every other tick
-// (malformed, stale, from another writer) is dropped and counted.
+// of the last tick (the plant resends it to a restarted member) is ignored; a tick whose
+// `paused` mask marks this process (the launcher paused it at a fault gate; it reads the ticks
+// it missed once resumed) is skipped without an answer, so that a resumed process acts first on
+// the tick of its resume gate, as in every run; every other tick (malformed, stale, from
+// another writer) is dropped and counted.
 #include <spdlog/logger.h>
 
 #include <atomic>
@@ -19,6 +22,13 @@
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::comm {
+
+/// A process's entry in PlantTick::paused: agents L0.., R0.., then group-L, group-R, central;
+/// -1 for any other name.
+int paused_slot(const std::string& name, int per_side);
+
+/// True when the tick marks the process of slot `slot` as paused.
+bool paused_in(const msg::PlantTick& t, int slot);
 
 class TickFollower {
  public:
@@ -46,6 +56,8 @@ class TickFollower {
 
   /// Ticks dropped as malformed, stale, undecodable or not from the plant so far.
   uint64_t rejected() const { return rejected_.load() + ticks_.undecodable(); }
+  /// Ticks skipped because they mark this process as paused.
+  uint64_t skipped_paused() const { return skipped_paused_.load(); }
 
  private:
   const ProcessArgs& args_;
@@ -62,6 +74,8 @@ class TickFollower {
   std::shared_ptr<void> last_answer_;
   long long answered_tick_ = -1;  ///< the tick last_answer_ answers
   std::function<void()> resend_;
+  std::atomic<uint64_t> skipped_paused_{0};
+  int slot_ = -1;  ///< this process's entry in PlantTick::paused (paused_slot)
   std::optional<eprosima::fastrtps::rtps::InstanceHandle_t> plant_writer_;
   // Written on the DDS receive thread by on_sample, read by the loop.
   long long last_tick_ = -1;

@@ -3,7 +3,8 @@
 // agent answers every tick it is assigned in, and, while idle (not assigned in the tick), only
 // every kIdleAnswerEvery ticks, in a slot of its own, so that the plant hears it now and then.
 // An idle agent applies 0 V by definition, so the plant loses nothing by not waiting for it.
-// A process that has not answered any tick yet (a restarted one) answers the first it sees.
+// An agent answers the first tick it follows after a gap (its first tick after a start, or
+// after a pause): the plant waits for a rejoining member.
 
 namespace maptr::comm {
 

@@ -20,7 +20,8 @@ bool tick_valid(const msg::PlantTick& t, std::size_t per_side) {
   if (t.run_state() > msg::RUN_ABORTED) return false;
   for (const msg::SideTick& s : t.sides())
     if (!side_valid(s, per_side)) return false;
-  return true;
+  // The paused mask: empty, or one entry per member (agents, groups, central).
+  return t.paused().empty() || t.paused().size() == 2 * per_side + 3;
 }
 
 TickVerdict classify_tick(const msg::PlantTick& t, std::size_t per_side, long long last_tick) {

@@ -158,6 +158,17 @@ void check_segments(const Scenario& s, const Context& c) {
   }
 }
 
+/// The plant is never paused: it is the fleet's clock.
+void check_pauses(const Scenario& s, const Context& c) {
+  for (std::size_t i = 0; i < s.faults.size(); ++i)
+    if ((s.faults[i].action == "pause" || s.faults[i].action == "resume") && s.faults[i].target == "plant")
+      c.fail("faults[" + std::to_string(i) + "].target", "plant",
+             "the plant cannot be paused: it is the fleet's clock");
+  if (const auto i = unmatched_resume(s.faults))
+    c.fail("faults[" + std::to_string(*i) + "].action", "resume",
+           "a resume of " + s.faults[*i].target + " needs an earlier pause of it (not yet resumed)");
+}
+
 void check_faults(const Scenario& s, const Context& c) {
   for (std::size_t i = 0; i < s.faults.size(); ++i) {
     const FaultSpec& f = s.faults[i];
@@ -170,6 +181,7 @@ void check_faults(const Scenario& s, const Context& c) {
     if (f.at_s > s.duration_s)
       c.fail(base + ".at_s", model::param_value(f.at_s), "must be within [0, duration_s]");
   }
+  check_pauses(s, c);
 }
 
 template <class R>
@@ -308,6 +320,21 @@ void set_speed(Scenario& s, const std::string& value, const std::string& origin)
 }
 
 std::string agent_name(int side, int index) { return (side == 0 ? "L" : "R") + std::to_string(index); }
+
+std::optional<std::size_t> unmatched_resume(const std::vector<FaultSpec>& faults) {
+  std::vector<std::size_t> order(faults.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return faults[a].at_s < faults[b].at_s; });
+  std::set<std::string> paused;
+  for (const std::size_t i : order) {
+    const FaultSpec& f = faults[i];
+    if (f.action == "pause") paused.insert(f.target);
+    if (f.action == "kill") paused.erase(f.target);
+    if (f.action == "resume" && !paused.erase(f.target)) return i;
+  }
+  return std::nullopt;
+}
 
 bool parse_agent_name(const std::string& n, int& side, int& index) {
   if (n.size() < 2 || (n[0] != 'L' && n[0] != 'R')) return false;

@@ -6,6 +6,7 @@
 // field_table() lists it. A bad scenario is refused with a ScenarioError naming the file, the
 // field and the value.
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,7 +48,7 @@ struct ControlConfig {
 
 struct FaultSpec {
   std::string target;  ///< "L3", "R0", "group-L", "group-R", "central", "plant", "discovery"
-  std::string action;  ///< "kill" | "restart"
+  std::string action;  ///< "kill" | "restart" | "pause" | "resume"
   double at_s = 0.0;   ///< simulated time, s
 };
 
@@ -143,6 +144,10 @@ void set_field(Scenario& s, const std::string& path, const std::string& value, c
 /// Sets speed_mps of every segment that moves (type other than "stop"), checked against the
 /// segment table's range.
 void set_speed(Scenario& s, const std::string& value, const std::string& origin);
+
+/// The first resume (index into `faults`) with no earlier pause of its target still in force
+/// (faults in time order; a kill ends a pause); nullopt when every resume has its pause.
+std::optional<std::size_t> unmatched_resume(const std::vector<FaultSpec>& faults);
 
 /// Agent names: L0..L{N/2-1}, R0.. ; parse returns false on a malformed name.
 std::string agent_name(int side, int index);

@@ -226,7 +226,8 @@ const Table<FaultSpec>& fault_table() {
           {"group-L", "group-R", "central", "plant", "discovery"}, "process to act on", &target_problem,
           "an agent of the robot (L0, R3, ...)"),
       text<F>(
-          "action", [](auto& f) -> auto& { return f.action; }, {"kill", "restart"}, "what to do to it"),
+          "action", [](auto& f) -> auto& { return f.action; }, {"kill", "restart", "pause", "resume"},
+          "what to do to it (pause: SIGSTOP, resume: SIGCONT)"),
       real<F>(
           "at_s", [](auto& f) -> auto& { return f.at_s; }, closed(0, 1e6), "s",
           "simulated time of the action (within the run)"),

@@ -68,25 +68,41 @@ void Membership::on_launcher(uint64_t seq, LauncherEvent kind, const std::string
   launcher_seq_ = std::max(launcher_seq_, seq);
   const auto id = find(name);
   if (!id || kind == LauncherEvent::kOther) return;
+  Member& m = at(*id);
   if (kind == LauncherEvent::kDied) {
+    // A process killed while paused was already out: its death is still a change of its own.
+    if (m.paused) record(*id, "died (launcher)");
+    m.paused = false;
     mark_dead(*id, "died (launcher)");
     return;
   }
-  Member& m = at(*id);
+  if (kind == LauncherEvent::kPaused) {
+    m.paused = true;
+    m.rejoining = false;
+    m.live = false;
+    record(*id, "paused (launcher)");
+    return;
+  }
+  // Started again, or resumed: waited for from now on; a resumed process keeps its writer.
+  if (kind == LauncherEvent::kResumed && !m.paused) return;
+  record(*id, kind == LauncherEvent::kResumed ? "resumed (launcher)" : "started (launcher)");
+  if (kind == LauncherEvent::kStarted) m.writer_known = false;
+  m.paused = false;
   m.live = true;
   m.rejoining = true;
-  m.writer_known = false;
 }
 
 void Membership::on_liveliness_lost(Role role, const WriterId& writer) {
   for (const auto& id : all_) {
     const Member& m = at(id);
-    if (id.role == role && m.writer_known && m.writer == writer) mark_dead(id, "lost (DDS liveliness)");
+    if (id.role == role && m.writer_known && m.writer == writer && !m.paused && !m.rejoining)
+      mark_dead(id, "lost (DDS liveliness)");
   }
 }
 
 void Membership::on_answer(const MemberId& id, const WriterId& writer) {
   Member& m = at(id);
+  if (m.paused) return;  // a reply sent before the pause, late: the member stays out
   if (!m.live || m.rejoining) record(id, "rejoined");
   m.live = true;
   m.rejoining = false;
@@ -110,6 +126,13 @@ std::vector<uint8_t> Membership::live_mask(int side) const {
   std::vector<uint8_t> m(per_side_);
   for (int j = 0; j < per_side_; ++j) m[j] = agents_[side][j].live ? 1 : 0;
   return m;
+}
+
+std::vector<uint8_t> Membership::paused_mask() const {
+  std::vector<uint8_t> out;
+  out.reserve(all_.size());
+  for (const auto& id : all_) out.push_back(at(id).paused ? 1 : 0);
+  return out;
 }
 
 int Membership::live_count(int side) const {

@@ -1,8 +1,9 @@
 #pragma once
 // Who the plant waits for: every agent, both groups and central, each live or not, with its
 // answer to the current tick, its DDS writer (learnt from its first sample) and whether it is
-// rejoining after a restart. Three sources change it: the launcher's events (a process died;
-// a restarted process is matched and ready), DDS liveliness (a writer's lease expired: only
+// rejoining after a restart or a pause. Three sources change it: the launcher's events (a
+// process died; a restarted process is matched and ready; a process was paused (SIGSTOP) or
+// resumed (SIGCONT) at a fault gate), DDS liveliness (a writer's lease expired: only
 // the member's current writer counts) and the barrier's wall-clock deadline. A member declared
 // dead is re-admitted as soon as it answers the current tick. Each change is logged with the
 // simulated time and the wall clock (ms since the epoch).
@@ -39,7 +40,8 @@ struct Member {
   bool answered = false;  ///< answered the current tick
   WriterId writer{};      ///< DDS writer, learnt from its first sample
   bool writer_known = false;
-  bool rejoining = false;  ///< restarted (launcher): expected from the next tick, not yet heard
+  bool rejoining = false;  ///< restarted or resumed (launcher): expected from the next tick, not yet heard
+  bool paused = false;     ///< paused by the launcher: not waited for, its lease loss expected
   bool excused = false;    ///< an idle agent not due to answer the current tick (comm/lockstep.hpp)
 };
 
@@ -52,7 +54,7 @@ struct MembershipRecord {
 };
 
 /// What a launcher event says (kOther: any other kind, only counted).
-enum class LauncherEvent { kDied, kStarted, kOther };
+enum class LauncherEvent { kDied, kStarted, kPaused, kResumed, kOther };
 
 class Membership {
  public:
@@ -74,11 +76,14 @@ class Membership {
   void begin_tick(const std::function<bool(int, int)>& excused = nullptr);
 
   /// Launcher event number seq about process `name`: a death ends the wait for it; a started
-  /// (restarted) process is waited for from now on, and its old writer no longer counts.
+  /// (restarted) process is waited for from now on, and its old writer no longer counts; a
+  /// paused process is out from now on (its ticks say so, and the loss of its lease is no
+  /// news); a resumed one is waited for again from now on, on the same writer.
   void on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name);
   /// Highest launcher event number applied so far.
   uint64_t launcher_seq() const { return launcher_seq_; }
-  /// A writer of `role`'s topic lost its liveliness: the member whose current writer it is dies.
+  /// A writer of `role`'s topic lost its liveliness: the member whose current writer it is dies
+  /// (unless the launcher paused it or it is rejoining: a lease that ran out during a pause).
   void on_liveliness_lost(Role role, const WriterId& writer);
   /// member answered the current tick on `writer`: live again (a rejoin is recorded once).
   void on_answer(const MemberId& id, const WriterId& writer);
@@ -88,6 +93,8 @@ class Membership {
 
   /// 1 per live agent of a side.
   std::vector<uint8_t> live_mask(int side) const;
+  /// 1 per member paused by the launcher, in the order of all().
+  std::vector<uint8_t> paused_mask() const;
   int live_count(int side) const;
   const std::vector<MembershipRecord>& records() const { return records_; }
 

@@ -51,6 +51,10 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
         cmd_.mask[s][j] = 0;  // never trust a dead agent's assignment
     cmd_.group_stamp[s] = k;
     group_rejects_[s] = g.rejected();
+    const int before = wear_.regressions(s);
+    wear_.on_status(s, g.wear_m(), core_.t());
+    if (wear_.regressions(s) > before)
+      log_.error("group-{}'s wear ledger went backwards at t={:.2f} s", s == 0 ? "L" : "R", core_.t());
   }
 }
 
@@ -99,8 +103,12 @@ bool PlantLoop::collect() {
     log_membership();
     if (Barrier::complete(membership_) || stop_.load()) break;
     // A restarted member may have matched the tick writer after tick k went out: send it again
-    // (unchanged; followers that have it ignore the copy).
-    if (barrier_.resend_due(membership_, now_s())) w_tick_->write(&sent_);
+    // (followers that have answered it answer again with the same sample). A member resumed
+    // between two ticks finds itself no longer marked paused in the copy.
+    if (barrier_.resend_due(membership_, now_s())) {
+      sent_.paused(membership_.paused_mask());
+      w_tick_->write(&sent_);
+    }
     if (barrier_.repair_due(consumed_, now_s())) {
       ++repairs_;
       w_tick_->write(&sent_);
@@ -171,6 +179,7 @@ int PlantLoop::report(bool stopped) {
   in.tick_repairs = repairs_;
   in.declared_dead_by_deadline = declared_dead_;
   in.tick_timing_us = timing_.json();
+  in.group_wear = wear_.json();
   std::ofstream(run_dir_ + "/plant.json") << plant_report(core_, in, membership_.records()).dump(2) << "\n";
   log_.info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", in.status, core_.tick(), core_.t(),
             wall);

@@ -179,6 +179,7 @@ void PlantLoop::publish(msg::RunState run_state) {
     side.n_active(static_cast<uint16_t>(count(cmd_.mask[s])));
     side.relay_count(static_cast<uint16_t>(cmd_.relay[s]));
   }
+  t.paused(membership_.paused_mask());
   t.run_state(run_state);
   w_tick_->write(&t);
 }

@@ -22,6 +22,7 @@
 #include "plant/report.hpp"
 #include "plant/run_files.hpp"
 #include "plant/validation.hpp"
+#include "plant/wear_watch.hpp"
 #include "sim/plant_core.hpp"
 
 namespace maptr::plant {
@@ -138,6 +139,7 @@ class PlantLoop {
   /// What each follower last said it dropped (its `rejected` field).
   std::vector<uint64_t> agent_rejects_[2];
   uint64_t group_rejects_[2] = {0, 0}, central_rejects_ = 0;
+  WearWatch wear_;  ///< the groups' ledgers, never to go backwards
 };
 
 }  // namespace maptr::plant

@@ -92,6 +92,7 @@ nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
   j["tick_timing_us"] = in.tick_timing_us;
   j["declared_dead_by_deadline"] = in.declared_dead_by_deadline;
   j["membership_events"] = membership_json(records);
+  j["group_wear"] = in.group_wear;
   return j;
 }
 

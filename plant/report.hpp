@@ -62,6 +62,7 @@ struct ReportInputs {
   uint64_t tick_repairs = 0;  ///< ticks sent again because answers were missing (lost samples)
   uint64_t declared_dead_by_deadline = 0;
   nlohmann::json tick_timing_us = nlohmann::json::object();
+  nlohmann::json group_wear = nlohmann::json::object();  ///< WearWatch::json()
 };
 
 nlohmann::json membership_json(const std::vector<MembershipRecord>& records);

@@ -29,6 +29,10 @@ LauncherEvent launcher_event(msg::MemberEvent kind) {
       return LauncherEvent::kDied;
     case msg::MEMBER_STARTED:
       return LauncherEvent::kStarted;
+    case msg::MEMBER_PAUSED:
+      return LauncherEvent::kPaused;
+    case msg::MEMBER_RESUMED:
+      return LauncherEvent::kResumed;
   }
   return LauncherEvent::kOther;
 }

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <map>
 
 #include "deploy/fleet/launcher.hpp"
 
@@ -10,9 +11,12 @@ namespace maptr::deploy::cli {
 namespace fs = std::filesystem;
 
 CLI::App* add_signal_command(CLI::App& app, const std::string& action, SignalArgs& a) {
-  const std::string what = action == "kill"
-                               ? "SIGKILL a process of a running fleet (e.g. L3, group-R, central)"
-                               : "start a killed process of a running fleet again";
+  static const std::map<std::string, std::string> kWhat = {
+      {"kill", "SIGKILL a process of a running fleet (e.g. L3, group-R, central)"},
+      {"restart", "start a killed process of a running fleet again"},
+      {"pause", "SIGSTOP a process of a running fleet (the plant drops it at once)"},
+      {"resume", "SIGCONT a paused process of a running fleet (the plant expects it again)"}};
+  const std::string what = kWhat.at(action);
   auto* c = app.add_subcommand(action, what);
   c->add_option("target", a.target, "process name")->required();
   c->add_option("--run", a.run_dir, "run folder (default: the newest running one under runs/)");

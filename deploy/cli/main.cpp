@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|level2|experiment|bench|fuzz|kill|restart|top|replay|plot`).
+// dispatches (`maptr run|level2|experiment|bench|fuzz|kill|restart|pause|resume|soak|top|replay|plot`).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -10,6 +10,7 @@
 #include "deploy/cli/paths.hpp"
 #include "deploy/cli/record_commands.hpp"
 #include "deploy/cli/run_command.hpp"
+#include "deploy/cli/soak_command.hpp"
 #include "deploy/cli/study_commands.hpp"
 #include "deploy/cli/top_command.hpp"
 
@@ -23,7 +24,8 @@ int main(int argc, char** argv) {
   ExperimentArgs experiment_args;
   BenchArgs bench_args;
   FuzzArgs fuzz_args;
-  SignalArgs kill_args, restart_args;
+  SignalArgs kill_args, restart_args, pause_args, resume_args;
+  SoakArgs soak_args;
   TopArgs top_args;
   auto* run = add_run_command(app, run_args);
   auto* level2 = add_level2_command(app, level2_args);
@@ -37,6 +39,9 @@ int main(int argc, char** argv) {
   PlotArgs plot_args;
   auto* replay = add_replay_command(app, replay_args);
   auto* plot = add_plot_command(app, plot_args);
+  auto* pause = add_signal_command(app, "pause", pause_args);
+  auto* resume = add_signal_command(app, "resume", resume_args);
+  auto* soak = add_soak_command(app, soak_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -57,6 +62,9 @@ int main(int argc, char** argv) {
     if (top->parsed()) return cmd_top(top_args);
     if (replay->parsed()) return cmd_replay(replay_args);
     if (plot->parsed()) return cmd_plot(plot_args);
+    if (pause->parsed()) return cmd_signal("pause", pause_args);
+    if (resume->parsed()) return cmd_signal("resume", resume_args);
+    if (soak->parsed()) return cmd_soak(soak_args, bin_dir(argv[0]));
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 1;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "deploy/cli/paths.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
@@ -40,6 +41,9 @@ void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::s
     if (used == 0 || used != time.size() || !std::isfinite(f.at_s) || f.at_s < 0)
       throw ScenarioError("--" + action + " " + spec.substr(0, 80) + ": faults[].at_s = " + time.substr(0, 80) +
                           ": must be a finite number of seconds, at least 0");
+    if ((action == "pause" || action == "resume") && f.target == "plant")
+      throw ScenarioError("--" + action + " " + spec.substr(0, 80) +
+                          ": faults[].target = plant: the plant cannot be paused: it is the fleet's clock");
     s.faults.push_back(f);
   }
 }
@@ -86,8 +90,12 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
                   "Level-1 control and plant tick rate, Hz (default: the scenario's, 100)");
   run->add_option("--kill", a.kills, "kill a process at a simulated time, e.g. L3@120 (repeatable)");
   run->add_option("--restart", a.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
-  run->add_option("--chaos", a.chaos,
-                  "random kills and restarts of agents and controllers, reproducible from SEED");
+  run->add_option("--pause", a.pauses,
+                  "stop a process (SIGSTOP) at a simulated time, e.g. L3@120 (repeatable)");
+  run->add_option("--resume", a.resumes, "continue a paused process (SIGCONT), e.g. L3@130 (repeatable)");
+  run->add_option(
+      "--chaos", a.chaos,
+      "random kills and restarts, pauses and resumes of agents and controllers, reproducible from SEED");
   run->add_option("--external", a.external, "an agent you start yourself (the launcher prints the command)");
   run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm up to 64 agents)")
       ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
@@ -118,8 +126,19 @@ Scenario scenario_from(const RunArgs& a) {
   // A longer --duration than the trajectory: the last segment goes on.
   if (!a.duration.empty() && s.trajectory.total_duration() < s.duration_s)
     s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
+  const std::size_t from_file = s.faults.size();
   add_faults(s, a.kills, "kill");
   add_faults(s, a.restarts, "restart");
+  add_faults(s, a.pauses, "pause");
+  add_faults(s, a.resumes, "resume");
+  if (const auto i = config::unmatched_resume(s.faults); i && *i >= from_file) {
+    const config::FaultSpec& f = s.faults[*i];
+    std::ostringstream at;
+    at << f.at_s;
+    throw ScenarioError("--resume " + f.target.substr(0, 80) + "@" + at.str() + ": faults[" +
+                        std::to_string(*i) + "].action = resume: needs an earlier --pause of " +
+                        f.target.substr(0, 80) + " (not yet resumed)");
+  }
   if (a.chaos >= 0)
     for (const auto& f : chaos_schedule(static_cast<unsigned>(a.chaos), s)) s.faults.push_back(f);
   return s;

@@ -17,7 +17,7 @@ struct RunArgs {
   std::string out;
   bool realtime = false, quiet = false, secure = false;
   int domain = -1;
-  std::vector<std::string> kills, restarts, external;
+  std::vector<std::string> kills, restarts, pauses, resumes, external;
   long long chaos = -1;
   std::string transport = "auto";
 };

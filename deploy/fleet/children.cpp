@@ -29,6 +29,7 @@ Exit exit_of(pid_t pid, int st, long max_rss_kB) {
 
 void record_exit(Child& c, const Exit& e) {
   c.running = false;
+  c.paused = false;
   c.exit_code = e.exit_code;
   c.signal = e.signal;
   c.max_rss_kB = std::max(c.max_rss_kB, e.max_rss_kB);

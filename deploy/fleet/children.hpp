@@ -27,6 +27,7 @@ struct Child {
   uint16_t index = 0;  ///< agents: index within the side
   pid_t pid = -1;
   bool running = false;
+  bool paused = false;    ///< stopped by a pause fault (SIGSTOP), not resumed yet
   bool external = false;  ///< started by the user, not by the launcher
   int exit_code = -1, signal = 0;
   long max_rss_kB = 0;

@@ -19,7 +19,7 @@ std::vector<Command> CommandLines::feed(std::string_view bytes) {
     buf_.erase(0, nl + 1);
     Command c;
     line >> c.action >> c.target;
-    c.valid = c.action == "kill" || c.action == "restart";
+    c.valid = c.action == "kill" || c.action == "restart" || c.action == "pause" || c.action == "resume";
     out.push_back(c);
   }
   return out;

@@ -41,7 +41,9 @@ void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, cons
     auto& f = failures[i];
     const double at = f.value("at_s", 0.0);
     const std::string target = f.value("target", "");
-    const bool restart = f.value("action", "") == "restart";
+    // A restart or a resume is detected when the target answers again; a kill or a pause when
+    // the plant drops it.
+    const bool restart = f.value("action", "") == "restart" || f.value("action", "") == "resume";
     // Detection: the first membership event of the target at or after the fault.
     f["detected_s"] = nullptr;
     f["detect_wall_ms"] = nullptr;

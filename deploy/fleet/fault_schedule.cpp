@@ -6,42 +6,75 @@
 
 namespace maptr::deploy {
 
-std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s, int faults) {
+namespace {
+/// One target down from `from` to `to`, s.
+struct Outage {
+  std::string target;
+  double from, to;
+};
+bool overlaps(const std::vector<Outage>& done, const std::string& target, double from, double to) {
+  for (const auto& d : done)
+    if (d.target == target && from <= d.to + 0.5 && to >= d.from - 0.5) return true;
+  return false;
+}
+}  // namespace
+
+std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s,
+                                              const ChaosOptions& o) {
   std::mt19937 rng(seed);
+  // The kind of each outage comes from a stream of its own: targets and times stay those of
+  // a schedule without pauses.
+  std::mt19937 kind_rng(seed ^ 0x9e3779b9u);
   std::vector<std::string> targets = {"group-L", "group-R", "central"};
   for (int side = 0; side < 2; ++side)
     for (int j = 0; j < s.robot.per_side(); ++j) targets.push_back(config::agent_name(side, j));
+  if (o.discovery) targets.push_back(fleet::kDiscoveryTarget);
   // Faults start once the robot is moving and leave time to recover before the end.
   const double t0 = std::min(5.0, 0.2 * s.duration_s), t1 = std::max(t0, s.duration_s - 10.0);
-  std::uniform_real_distribution<double> when(t0, t1), back(2.0, 8.0);
+  std::uniform_real_distribution<double> when(t0, t1), back(2.0, 8.0), kind(0.0, 1.0);
   std::uniform_int_distribution<std::size_t> who(0, targets.size() - 1);
   std::vector<config::FaultSpec> out;
-  for (int i = 0; i < faults; ++i) {
+  std::vector<Outage> done;
+  for (int i = 0; i < o.outages; ++i) {
     const std::string target = targets[who(rng)];
     const double at = std::round(when(rng) * 100.0) / 100.0;
     const double again = std::min(s.duration_s, std::round((at + back(rng)) * 100.0) / 100.0);
-    // One outage per target: skip a target that is already scheduled to be down then.
-    bool overlaps = false;
-    for (std::size_t k = 0; k + 1 < out.size(); k += 2)
-      if (out[k].target == target && at <= out[k + 1].at_s + 0.5 && again >= out[k].at_s - 0.5)
-        overlaps = true;
-    if (overlaps) continue;
-    out.push_back({target, "kill", at});
-    out.push_back({target, "restart", again});
+    // The discovery server is only killed: while it is paused no restarted process can be
+    // found, and a fault gate would wait for one in vain.
+    const bool pause = kind(kind_rng) < o.pause_share && target != fleet::kDiscoveryTarget;
+    // One outage per target at a time.
+    if (overlaps(done, target, at, again)) continue;
+    done.push_back({target, at, again});
+    if (pause) {
+      out.push_back({target, "pause", at});
+      out.push_back({target, "resume", again});
+    } else {
+      out.push_back({target, "kill", at});
+      // The launcher restarts a killed discovery server by itself.
+      if (target != fleet::kDiscoveryTarget) out.push_back({target, "restart", again});
+    }
   }
   return out;
+}
+
+std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s, int faults) {
+  ChaosOptions o;
+  o.outages = faults;
+  return chaos_schedule(seed, s, o);
 }
 
 namespace fleet {
 
 FaultAction decide_fault(const config::FaultSpec& f, const TargetState& s) {
-  if (f.target == kDiscoveryTarget) {
-    if (f.action == "kill" && s.running) return {FaultAction::kKill, ""};
+  if (f.target == kDiscoveryTarget && f.action == "restart")
     return {FaultAction::kSkip, "the discovery server is restarted by the launcher when it dies"};
-  }
   if (s.known && s.external)
     return {FaultAction::kSkip, "an external process is not the launcher's to kill or start"};
-  if (s.known && f.action == "kill" && s.running) return {FaultAction::kKill, ""};
+  if (s.known && s.running) {
+    if (f.action == "kill") return {FaultAction::kKill, ""};
+    if (f.action == "pause" && !s.paused) return {FaultAction::kPause, ""};
+    if (f.action == "resume" && s.paused) return {FaultAction::kResume, ""};
+  }
   if (s.known && f.action == "restart" && !s.running) return {FaultAction::kRestart, ""};
   return {FaultAction::kSkip, "target not in a state for this action"};
 }
@@ -56,8 +89,10 @@ std::vector<config::FaultSpec> FaultSchedule::due(double gate_t) {
   return out;
 }
 
-void FaultSchedule::record(const config::FaultSpec& f, double at_s, double wall_ms, const FaultAction& a) {
-  nlohmann::json rec = {{"target", f.target}, {"action", f.action}, {"at_s", at_s}, {"wall_ms", wall_ms}};
+void FaultSchedule::record(const config::FaultSpec& f, double at_s, double wall_ms, const FaultAction& a,
+                           const std::string& origin) {
+  nlohmann::json rec = {
+      {"target", f.target}, {"action", f.action}, {"at_s", at_s}, {"wall_ms", wall_ms}, {"origin", origin}};
   if (a.kind == FaultAction::kSkip) rec["skipped"] = a.skipped;
   records_.push_back(rec);
 }

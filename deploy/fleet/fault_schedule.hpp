@@ -13,8 +13,19 @@
 
 namespace maptr::deploy {
 
-/// Kills and restarts of agents and controllers (never the plant) at random simulated times,
-/// the same for the same seed and scenario. Every killed process is restarted 2-8 s later.
+/// What a random fault schedule may contain.
+struct ChaosOptions {
+  int outages = 4;  ///< outages drawn (those overlapping an earlier one of the same target are dropped)
+  double pause_share = 1.0 / 3.0;  ///< share of the outages that are pauses instead of kills
+  bool discovery = false;          ///< the discovery server is a target too
+};
+
+/// Outages of agents and controllers (never the plant) at random simulated times, the same for
+/// the same seed, scenario and options: a kill restarted 2-8 s later, or a pause resumed 2-8 s
+/// later; the discovery server is only killed (the launcher restarts it).
+std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s,
+                                              const ChaosOptions& o);
+/// The schedule of `--chaos SEED`: `faults` outages, a third of them pauses.
 std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s, int faults = 4);
 
 namespace fleet {
@@ -27,16 +38,19 @@ struct TargetState {
   bool known = false;     ///< a process of the fleet (or the discovery server)
   bool external = false;  ///< started by the user, not the launcher's to kill or start
   bool running = false;
+  bool paused = false;  ///< stopped by a pause fault (SIGSTOP), not resumed yet
 };
 
-/// What the launcher does for a fault: kill or start its target, or skip it (and why).
+/// What the launcher does for a fault: kill, start, pause (SIGSTOP) or resume (SIGCONT) its
+/// target, or skip it (and why).
 struct FaultAction {
-  enum Kind { kKill, kRestart, kSkip } kind = kSkip;
+  enum Kind { kKill, kRestart, kPause, kResume, kSkip } kind = kSkip;
   std::string skipped;  ///< why it is skipped ("" unless kSkip)
 };
 
-/// The rule: a running target is killed, a dead one restarted; the discovery server is only
-/// killed (the launcher restarts it by itself); external processes are left alone.
+/// The rule: a running target is killed (paused or not), a dead one restarted, a running one
+/// paused, a paused one resumed; the discovery server is never restarted by a fault (the
+/// launcher restarts it by itself); external processes are left alone.
 FaultAction decide_fault(const config::FaultSpec& f, const TargetState& s);
 
 /// The scheduled faults of a run, in time order, and the record of every fault.
@@ -46,8 +60,10 @@ class FaultSchedule {
 
   /// Takes out every scheduled fault due at a gate of simulated time gate_t (at_s <= gate_t).
   std::vector<config::FaultSpec> due(double gate_t);
-  /// Records a fault applied at simulated time at_s (wall clock wall_ms, ms since the epoch).
-  void record(const config::FaultSpec& f, double at_s, double wall_ms, const FaultAction& a);
+  /// Records a fault applied at simulated time at_s (wall clock wall_ms, ms since the epoch);
+  /// origin says who asked for it ("scheduled", "chaos", "command").
+  void record(const config::FaultSpec& f, double at_s, double wall_ms, const FaultAction& a,
+              const std::string& origin = "scheduled");
   /// The run ended: every fault not yet due is recorded as skipped.
   void close();
 

@@ -342,6 +342,10 @@ void Fleet::start_run() {
 void Fleet::end() {
   // The plant's last tick tells every process to end; then SIGTERM, then SIGKILL.
   const auto reap_expected = [this] { reap(true); };
+  // Paused processes go on first: a stopped process handles neither the last tick nor SIGTERM.
+  signal_all(kids_, SIGCONT);
+  if (ds_paused_ && ds_->running()) kill(ds_->pid(), SIGCONT);
+  ds_paused_ = false;
   wait_all(kids_, rec_.status == "ok" ? cfg_.end_clean_s : cfg_.end_aborted_s, reap_expected);
   signal_all(kids_, SIGTERM);
   wait_all(kids_, cfg_.end_term_s, reap_expected);

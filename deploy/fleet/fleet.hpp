@@ -69,7 +69,8 @@ class Fleet {
   void reap(bool expected);
   void on_exit(const Exit& e, bool expected);
   void publish_member(const Child& c, msg::MemberEvent kind);
-  void apply_fault(const config::FaultSpec& f, double at_s);
+  void apply_fault(const config::FaultSpec& f, double at_s, const std::string& origin);
+  void pause_or_resume(Child* c, pid_t pid, bool pause);
   void open_gate(const msg::FaultGate& g);
   bool gate_pending(const std::vector<std::string>& killed) const;
   void take_ticks();
@@ -107,6 +108,7 @@ class Fleet {
   Clock::time_point t_launch_, t_run_, last_wave_, last_print_, last_progress_;
   uint64_t seen_ = 0, member_seq_ = 0, control_seq_ = 1;
   bool plant_done_ = false;
+  bool ds_paused_ = false;  ///< the discovery server is stopped by a pause fault
   long reported_rejected_ = 0;
 };
 

@@ -59,6 +59,7 @@ void Fleet::reap(bool expected) {
 
 void Fleet::on_exit(const Exit& e, bool expected) {
   if (ds_ && ds_->on_exit(e, expected)) {
+    ds_paused_ = false;
     // Established matches survive; the restarted server lets the clients re-register.
     if (!expected)
       log_.warn("the discovery server (pid {}) died: exit {} signal {}; starting it again", e.pid,
@@ -89,26 +90,56 @@ void Fleet::announce_restarted() {
       }
 }
 
-void Fleet::apply_fault(const config::FaultSpec& f, double at_s) {
+void Fleet::apply_fault(const config::FaultSpec& f, double at_s, const std::string& origin) {
   const double wall_ms = wall_ms_now();
   const bool discovery = f.target == kDiscoveryTarget;
   Child* c = discovery ? nullptr : find(f.target);
   TargetState s;
-  if (discovery && ds_) s = {true, false, ds_->running()};
-  if (c) s = {true, c->external, c->running};
+  if (discovery && ds_) s = {true, false, ds_->running(), ds_paused_};
+  if (c) s = {true, c->external, c->running, c->paused};
   const FaultAction a = decide_fault(f, s);
-  if (a.kind == FaultAction::kKill && discovery && ds_) {
-    ds_->kill_now();
-    log_.warn("fault: killed the discovery server (pid {}) at t={:.2f} s", ds_->pid(), at_s);
-  } else if (a.kind == FaultAction::kKill) {
-    kill(c->pid, SIGKILL);
-    log_.warn("fault: killed {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
-  } else if (a.kind == FaultAction::kRestart) {
-    spawn_child(*c);
-    c->awaiting_ready = true;
-    log_.warn("fault: restarted {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
+  const pid_t pid = discovery ? (ds_ ? ds_->pid() : -1) : (c ? c->pid : -1);
+  const std::string who = discovery ? std::string("the discovery server") : f.target;
+  switch (a.kind) {
+    case FaultAction::kKill:
+      if (discovery) {
+        if (!ds_) break;
+        kill(pid, SIGCONT);  // a stopped server would not end on SIGTERM
+        ds_paused_ = false;
+        ds_->kill_now();
+      } else {
+        kill(pid, SIGKILL);
+      }
+      log_.warn("fault: killed {} (pid {}) at t={:.2f} s", who, pid, at_s);
+      break;
+    case FaultAction::kRestart:
+      spawn_child(*c);
+      c->awaiting_ready = true;
+      log_.warn("fault: restarted {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
+      break;
+    case FaultAction::kPause:
+    case FaultAction::kResume:
+      pause_or_resume(c, pid, a.kind == FaultAction::kPause);
+      log_.warn("fault: {} {} (pid {}) at t={:.2f} s", a.kind == FaultAction::kPause ? "paused" : "resumed",
+                who, pid, at_s);
+      break;
+    case FaultAction::kSkip:
+      break;
   }
-  schedule_.record(f, at_s, wall_ms, a);
+  schedule_.record(f, at_s, wall_ms, a, origin);
+}
+
+void Fleet::pause_or_resume(Child* c, pid_t pid, bool pause) {
+  // The event reaches the plant before the gate opens: the member is out from this tick on
+  // (paused) or waited for again from this tick on (resumed).
+  if (pid <= 0) return;  // never kill(-1, ...): that is every process
+  kill(pid, pause ? SIGSTOP : SIGCONT);
+  if (!c) {
+    ds_paused_ = pause;
+    return;
+  }
+  c->paused = pause;
+  publish_member(*c, pause ? msg::MEMBER_PAUSED : msg::MEMBER_RESUMED);
 }
 
 bool Fleet::gate_pending(const std::vector<std::string>& killed) const {
@@ -125,7 +156,7 @@ void Fleet::open_gate(const msg::FaultGate& g) {
   std::vector<std::string> killed;
   for (const auto& f : schedule_.due(g.t())) {
     if (f.action == "kill") killed.push_back(f.target);
-    apply_fault(f, g.t());
+    apply_fault(f, g.t(), o_.chaos_seed >= 0 ? "chaos" : "scheduled");
   }
   const auto t0 = Clock::now();
   const double limit = cfg_.restart_ready_s(sc_.robot.agents);
@@ -166,7 +197,7 @@ void Fleet::take_commands() {
       continue;
     }
     log_.info("command: {} {}", c.action, c.target);
-    apply_fault(config::FaultSpec{c.target, c.action, clock_.state().t}, clock_.state().t);
+    apply_fault(config::FaultSpec{c.target, c.action, clock_.state().t}, clock_.state().t, "command");
   }
 }
 

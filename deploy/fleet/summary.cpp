@@ -9,6 +9,7 @@
 
 #include "control/level2/status.hpp"
 #include "deploy/fleet/fault_analysis.hpp"
+#include "deploy/fleet/membership_events.hpp"
 #include "records/level2_log.hpp"
 
 namespace maptr::deploy::fleet {
@@ -144,9 +145,10 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["discovery_server_restarts"] = r.discovery_restarts;
   s["transport"] = r.transport;
   nlohmann::json failures = r.failures;
-  analyse_faults(failures, plant.value("membership_events", nlohmann::json::array()), run_dir + "/trace.csv",
-                 sc.robot.wheel_radius_m);
+  const nlohmann::json plant_events = plant.value("membership_events", nlohmann::json::array());
+  analyse_faults(failures, plant_events, run_dir + "/trace.csv", sc.robot.wheel_radius_m);
   s["failures"] = failures;
+  s["membership_events"] = membership_events(plant_events, r.failures);
   if (r.chaos_seed >= 0) s["chaos_seed"] = r.chaos_seed;
   s["plant"] = plant;
   // Samples dropped as malformed, stale or forged, by the process that dropped them.

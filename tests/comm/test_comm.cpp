@@ -210,5 +210,28 @@ TEST(QosProfiles, DISABLED_ChildProcessReportsTheTickHistoryDepth) {
             std::atoi(want));
 }
 
+TEST(TickWire, APausedMemberFindsItselfInThePausedMask) {
+  // Agents L0..L3, R0..R3, then group-L, group-R, central.
+  EXPECT_EQ(paused_slot("L0", 4), 0);
+  EXPECT_EQ(paused_slot("R2", 4), 6);
+  EXPECT_EQ(paused_slot("group-L", 4), 8);
+  EXPECT_EQ(paused_slot("group-R", 4), 9);
+  EXPECT_EQ(paused_slot("central", 4), 10);
+  EXPECT_EQ(paused_slot("L4", 4), -1);
+  EXPECT_EQ(paused_slot("plant", 4), -1);
+  msg::PlantTick t = two_sided_tick();
+  EXPECT_TRUE(tick_valid(t, 4));  // no mask: nobody paused
+  EXPECT_FALSE(paused_in(t, 6));
+  std::vector<uint8_t> mask(11, 0);
+  mask[6] = 1;
+  t.paused(mask);
+  EXPECT_TRUE(tick_valid(t, 4));
+  EXPECT_TRUE(paused_in(t, 6));
+  EXPECT_FALSE(paused_in(t, 0));
+  EXPECT_FALSE(paused_in(t, -1));
+  t.paused(std::vector<uint8_t>(10, 0));  // a mask of another fleet size
+  EXPECT_FALSE(tick_valid(t, 4));
+}
+
 }  // namespace
 }  // namespace maptr::comm

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <set>
+#include <tuple>
 
 #include "records/trace.hpp"
 #include "tests/integration/fleet_runner.hpp"
@@ -247,5 +248,61 @@ TEST(Faults, KilledPlantEndsTheRunWithAClearErrorAndKeepsTheTrace) {
       continue;
     }
     EXPECT_TRUE(p["signal"] == 0 || p["signal"] == 15) << p.dump();
+  }
+}
+
+namespace {
+/// The summary's membership event of `kind` for `process`, or nullptr.
+const nlohmann::json* change_of(const nlohmann::json& s, const std::string& process,
+                                const std::string& kind) {
+  for (const auto& e : s["membership_events"])
+    if (e["process"] == process && e["kind"] == kind) return &e;
+  return nullptr;
+}
+}  // namespace
+
+TEST(Faults, PausedProcessesAreOutFromTheirPauseGateAndBackAtTheirResumeGateInEveryRun) {
+  TempDir tmp;
+  // An agent paused for 10 simulated seconds (long enough, on most machines, for its DDS lease
+  // to run out) and a group controller for 3: both rejoin at their resume gate, and the trace
+  // is the same in two runs.
+  const std::vector<std::string> faults = {"--agents", "8",         "--duration", "18",
+                                           "--pause",  "L1@4",      "--resume",   "L1@14",
+                                           "--pause",  "group-R@5", "--resume",   "group-R@8"};
+  std::string hash;
+  for (int run = 0; run < 2; ++run) {
+    const std::string out = tmp.path() + "/run" + std::to_string(run);
+    auto r = run_cli(run_args(out, faults), out, 300);
+    ASSERT_FALSE(r.timed_out) << r.output;
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto& s = r.summary;
+    EXPECT_EQ(s["status"], "ok");
+    for (const auto& [name, paused, resumed] :
+         {std::tuple<std::string, double, double>{"L1", 4.0, 14.0}, {"group-R", 5.0, 8.0}}) {
+      const auto *p = change_of(s, name, "paused"), *q = change_of(s, name, "resumed"),
+                 *j = change_of(s, name, "rejoined");
+      ASSERT_NE(p, nullptr) << s["membership_events"].dump();
+      ASSERT_NE(q, nullptr) << s["membership_events"].dump();
+      ASSERT_NE(j, nullptr) << s["membership_events"].dump();
+      EXPECT_NEAR((*p)["t_s"].get<double>(), paused, 0.011);
+      EXPECT_NEAR((*q)["t_s"].get<double>(), resumed, 0.011);
+      EXPECT_DOUBLE_EQ((*j)["t_s"].get<double>(), (*q)["t_s"].get<double>()) << "rejoins at its resume gate";
+      EXPECT_EQ((*p)["cause"], "scheduled");
+      EXPECT_EQ((*j)["after"], "resumed");
+      EXPECT_GT((*p)["wall_ms"].get<double>(), 0.0);
+      EXPECT_EQ(change_of(s, name, "lease_lost"), nullptr) << "a paused member's lease is no news";
+      EXPECT_EQ(change_of(s, name, "died"), nullptr);
+    }
+    // Nobody was restarted: the paused processes went on and ended cleanly.
+    for (const auto& p : s["processes"]) {
+      EXPECT_EQ(p["exit_code"], 0) << p.dump();
+      EXPECT_EQ(p["starts"], 1) << p.dump();
+    }
+    EXPECT_EQ(s["plant"]["live_agents"]["L"], 4);
+    EXPECT_EQ(s["plant"]["group_wear"]["R"]["regressions"], 0);
+    if (run == 0)
+      hash = s["trace_sha256"];
+    else
+      EXPECT_EQ(s["trace_sha256"], hash) << "a pause and its resume act at the same tick in every run";
   }
 }

@@ -167,10 +167,15 @@ TEST(Fleet, BadCommandLineValuesAreRefusedLikeScenarioFields) {
     const char* field;
     const char* value;
   } cases[] = {
-      {{"--speed", "-5"}, "speed_mps", "-5"},       {{"--speed", "nan"}, "speed_mps", "nan"},
-      {{"--gross-kg", "inf"}, "gross_mass_kg", "inf"}, {{"--agents", "30"}, "agents", "30"},
-      {{"--tick-hz", "0"}, "tick_hz", "0"},          {{"--duration", "-1"}, "duration_s", "-1"},
+      {{"--speed", "-5"}, "speed_mps", "-5"},
+      {{"--speed", "nan"}, "speed_mps", "nan"},
+      {{"--gross-kg", "inf"}, "gross_mass_kg", "inf"},
+      {{"--agents", "30"}, "agents", "30"},
+      {{"--tick-hz", "0"}, "tick_hz", "0"},
+      {{"--duration", "-1"}, "duration_s", "-1"},
       {{"--kill", "L3@nan"}, "at_s", "nan"},
+      {{"--resume", "L3@5"}, "action", "resume"},
+      {{"--pause", "plant@5"}, "target", "plant"},
   };
   int i = 0;
   for (const auto& c : cases) {

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "deploy/fleet/fault_analysis.hpp"
@@ -56,6 +57,77 @@ TEST(FleetFaultSchedule, ActionDependsOnTheTargetsState) {
   EXPECT_EQ(decide_fault({"discovery", "restart", 1}, {true, false, false}).kind, FaultAction::kSkip);
 }
 
+TEST(FleetFaultSchedule, PauseNeedsARunningTargetAndResumeAPausedOne) {
+  const TargetState running{true, false, true, false}, paused{true, false, true, true},
+      dead{true, false, false, false};
+  EXPECT_EQ(decide_fault({"L1", "pause", 1}, running).kind, FaultAction::kPause);
+  EXPECT_EQ(decide_fault({"L1", "pause", 1}, paused).kind, FaultAction::kSkip);
+  EXPECT_EQ(decide_fault({"L1", "pause", 1}, dead).kind, FaultAction::kSkip);
+  EXPECT_EQ(decide_fault({"L1", "resume", 1}, paused).kind, FaultAction::kResume);
+  EXPECT_EQ(decide_fault({"L1", "resume", 1}, running).kind, FaultAction::kSkip);
+  EXPECT_EQ(decide_fault({"L1", "resume", 1}, dead).kind, FaultAction::kSkip);
+  EXPECT_EQ(decide_fault({"L1", "kill", 1}, paused).kind,
+            FaultAction::kKill);  // SIGKILL ends a stopped process
+  EXPECT_EQ(decide_fault({"discovery", "pause", 1}, running).kind, FaultAction::kPause);
+  EXPECT_EQ(decide_fault({"discovery", "resume", 1}, paused).kind, FaultAction::kResume);
+  EXPECT_EQ(decide_fault({"L1", "pause", 1}, {true, true, true, false}).kind,
+            FaultAction::kSkip);  // external
+}
+
+TEST(FleetFaultSchedule, RecordsSayWhoAskedForTheFault) {
+  FaultSchedule s({{"L1", "pause", 5.0}, {"L1", "resume", 8.0}});
+  for (const auto& f : s.due(5.0))
+    s.record(f, 5.0, 1000.0, decide_fault(f, {true, false, true, false}), "chaos");
+  for (const auto& f : s.due(8.0)) s.record(f, 8.0, 1500.0, decide_fault(f, {true, false, true, true}));
+  const auto& r = s.records();
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0]["origin"], "chaos");
+  EXPECT_EQ(r[1]["origin"], "scheduled");
+  EXPECT_FALSE(r[1].contains("skipped"));
+}
+
+TEST(FleetChaos, PausesAndTheDiscoveryServerWhenAsked) {
+  maptr::config::Scenario sc;
+  sc.robot.agents = 8;
+  sc.duration_s = 40.0;
+  ChaosOptions o;
+  o.outages = 200;
+  o.discovery = true;
+  const auto a = chaos_schedule(3, sc, o);
+  int pauses = 0, kills = 0, discovery = 0;
+  std::map<std::string, int> open_pauses;
+  for (const auto& f : a) {
+    pauses += f.action == "pause";
+    kills += f.action == "kill";
+    discovery += f.target == "discovery";
+    EXPECT_NE(f.target, "plant");
+    // The discovery server is only killed: the launcher restarts it.
+    if (f.target == "discovery") {
+      EXPECT_EQ(f.action, "kill");
+    }
+  }
+  EXPECT_GT(pauses, 0);
+  EXPECT_GT(kills, 0);
+  EXPECT_GT(discovery, 0);
+  // Every resume follows a pause of its target: the scenario accepts the schedule.
+  sc.faults = a;
+  EXPECT_NO_THROW(sc.validate());
+  // Only pauses when asked so (the discovery server is still killed).
+  o.pause_share = 1.0;
+  for (const auto& f : chaos_schedule(3, sc, o))
+    EXPECT_TRUE(f.action == "pause" || f.action == "resume" || f.target == "discovery") << f.action;
+  // Without pauses the targets and times are those of the plain schedule.
+  o.pause_share = 0.0;
+  o.discovery = false;
+  o.outages = 6;
+  const auto plain = chaos_schedule(7, sc, o), mixed = chaos_schedule(7, sc, 6);
+  ASSERT_EQ(plain.size(), mixed.size());
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    EXPECT_EQ(plain[i].target, mixed[i].target);
+    EXPECT_DOUBLE_EQ(plain[i].at_s, mixed[i].at_s);
+  }
+}
+
 TEST(FleetChaos, SameSeedSameScheduleOnlyValidTargets) {
   maptr::config::Scenario sc;
   sc.robot.agents = 8;
@@ -74,10 +146,10 @@ TEST(FleetChaos, SameSeedSameScheduleOnlyValidTargets) {
     EXPECT_GE(a[i].at_s, 5.0);
     EXPECT_LE(a[i].at_s, sc.duration_s);
   }
-  // Kill and restart in pairs, the restart 2-8 s later (capped at the end).
+  // Kill and restart, or pause and resume, in pairs, the second 2-8 s later (capped at the end).
   for (std::size_t i = 0; i + 1 < a.size(); i += 2) {
-    EXPECT_EQ(a[i].action, "kill");
-    EXPECT_EQ(a[i + 1].action, "restart");
+    EXPECT_TRUE(a[i].action == "kill" || a[i].action == "pause") << a[i].action;
+    EXPECT_EQ(a[i + 1].action, a[i].action == "kill" ? "restart" : "resume");
     EXPECT_EQ(a[i].target, a[i + 1].target);
     EXPECT_GE(a[i + 1].at_s - a[i].at_s, 2.0 - 0.01);
     EXPECT_LE(a[i + 1].at_s - a[i].at_s, 8.0 + 0.01);

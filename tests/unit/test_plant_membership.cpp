@@ -98,7 +98,8 @@ TEST_F(PlantMembership, LivelinessLossOfAnOldWriterAfterARestartIsIgnored) {
   EXPECT_FALSE(m.at(kL1).live);
   std::vector<std::string> events;
   for (const auto& r : m.records()) events.push_back(r.event);
-  EXPECT_EQ(events, (std::vector<std::string>{"died (launcher)", "rejoined", "lost (DDS liveliness)"}));
+  EXPECT_EQ(events, (std::vector<std::string>{"died (launcher)", "started (launcher)", "rejoined",
+                                              "lost (DDS liveliness)"}));
 }
 
 TEST_F(PlantMembership, UnsetWriterHandleMatchesNoKnownWriter) {
@@ -129,10 +130,11 @@ TEST_F(PlantMembership, RejoinIsRecordedOnce) {
 
 TEST_F(PlantMembership, StartedMemberIsRecordedAsRejoinedWhenItAnswers) {
   m.on_launcher(1, LauncherEvent::kStarted, "group-L");  // restarted before anyone saw it die
-  EXPECT_TRUE(m.records().empty());
-  m.on_answer(kGroupL, writer(3));
   ASSERT_EQ(m.records().size(), 1u);
-  EXPECT_EQ(m.records()[0].event, "rejoined");
+  EXPECT_EQ(m.records()[0].event, "started (launcher)");
+  m.on_answer(kGroupL, writer(3));
+  ASSERT_EQ(m.records().size(), 2u);
+  EXPECT_EQ(m.records()[1].event, "rejoined");
   EXPECT_FALSE(m.at(kGroupL).rejoining);
 }
 
@@ -149,3 +151,65 @@ TEST_F(PlantMembership, DeadlineDeclaresOnlyLiveLateMembers) {
 }
 
 }  // namespace
+
+TEST_F(PlantMembership, PausedMemberIsOutMarkedInTheMaskAndItsLeaseLossIsNoNews) {
+  m.on_answer(kL1, writer(1));
+  m.set_time(5.0);
+  m.on_launcher(1, LauncherEvent::kPaused, "L1");
+  EXPECT_FALSE(m.at(kL1).live);
+  EXPECT_TRUE(m.at(kL1).paused);
+  EXPECT_EQ(m.live_mask(0), (std::vector<uint8_t>{1, 0, 1, 1}));
+  std::vector<uint8_t> paused(2 * kPerSide + 3, 0);
+  paused[1] = 1;  // L1: agents L0.., R0.., then group-L, group-R, central
+  EXPECT_EQ(m.paused_mask(), paused);
+  // Its lease runs out during the pause; a late reply sent before the pause is no rejoin.
+  m.on_liveliness_lost(Role::kAgent, writer(1));
+  m.on_answer(kL1, writer(1));
+  EXPECT_FALSE(m.at(kL1).live);
+  ASSERT_EQ(m.records().size(), 1u);
+  EXPECT_EQ(m.records()[0].event, "paused (launcher)");
+  EXPECT_DOUBLE_EQ(m.records()[0].t_s, 5.0);
+  // Not waited for at the deadline either.
+  m.begin_tick();
+  m.on_deadline();
+  EXPECT_EQ(m.records()[1].name, "L0");
+}
+
+TEST_F(PlantMembership, ResumedMemberKeepsItsWriterAndRejoinsWhenItAnswers) {
+  m.on_answer(kGroupL, writer(3));
+  m.set_time(5.0);
+  m.on_launcher(1, LauncherEvent::kPaused, "group-L");
+  m.set_time(8.0);
+  m.on_launcher(2, LauncherEvent::kResumed, "group-L");
+  EXPECT_TRUE(m.at(kGroupL).live);
+  EXPECT_TRUE(m.at(kGroupL).rejoining);
+  EXPECT_FALSE(m.at(kGroupL).paused);
+  EXPECT_TRUE(m.at(kGroupL).writer_known);
+  EXPECT_EQ(m.paused_mask(), std::vector<uint8_t>(2 * kPerSide + 3, 0));
+  // The lease loss of the pause, reported late, does not end the rejoin.
+  m.on_liveliness_lost(Role::kGroup, writer(3));
+  EXPECT_TRUE(m.at(kGroupL).live);
+  m.set_time(8.01);
+  m.on_answer(kGroupL, writer(3));
+  std::vector<std::string> events;
+  for (const auto& r : m.records()) events.push_back(r.event + "@" + std::to_string(r.t_s).substr(0, 4));
+  EXPECT_EQ(events,
+            (std::vector<std::string>{"paused (launcher)@5.00", "resumed (launcher)@8.00", "rejoined@8.01"}));
+  // Once back, a lost lease ends it again.
+  m.on_liveliness_lost(Role::kGroup, writer(3));
+  EXPECT_FALSE(m.at(kGroupL).live);
+}
+
+TEST_F(PlantMembership, ResumeWithoutPauseChangesNothingAndAKillEndsAPause) {
+  m.on_launcher(1, LauncherEvent::kResumed, "central");
+  EXPECT_TRUE(m.records().empty());
+  EXPECT_FALSE(m.at(kCentral).rejoining);
+  m.on_launcher(2, LauncherEvent::kPaused, "R2");
+  m.on_launcher(3, LauncherEvent::kDied, "R2");  // killed while paused: no longer paused
+  EXPECT_FALSE(m.at(kR2).paused);
+  EXPECT_FALSE(m.at(kR2).live);
+  m.on_launcher(4, LauncherEvent::kResumed, "R2");  // too late: nothing to resume
+  EXPECT_FALSE(m.at(kR2).live);
+  ASSERT_EQ(m.records().size(), 2u);
+  EXPECT_EQ(m.records()[1].event, "died (launcher)");
+}

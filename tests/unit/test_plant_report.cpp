@@ -123,7 +123,8 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "missed_deadlines",
                                          "tick_timing_us",
                                          "declared_dead_by_deadline",
-                                         "membership_events"}));
+                                         "membership_events",
+                                         "group_wear"}));
   EXPECT_EQ(j["live_agents"]["R"], 7);
   EXPECT_EQ(j["rejected_samples"], 3);
   EXPECT_EQ(j["agent_active_s"]["L"].size(), 8u);

@@ -275,6 +275,27 @@ TEST(Scenario, AFaultOnAnAgentTheRobotDoesNotHaveIsRefused) {
   expect_refused("faults: [{target: L1, action: kill, at_s: 61}]\n", "faults[0].at_s", "61");
 }
 
+TEST(Scenario, PausesAndResumesAreFaultsAndAResumeNeedsAPause) {
+  EXPECT_EQ(
+      refusal("faults: [{target: L1, action: pause, at_s: 5}, {target: L1, action: resume, at_s: 8}]\n"), "");
+  // In time order, whatever the order of the list.
+  EXPECT_EQ(refusal("faults: [{target: central, action: resume, at_s: 8}, {target: central, action: pause, "
+                    "at_s: 5}]\n"),
+            "");
+  expect_refused("faults: [{target: L1, action: resume, at_s: 8}]\n", "faults[0].action", "resume");
+  expect_refused("faults: [{target: L1, action: pause, at_s: 9}, {target: L1, action: resume, at_s: 8}]\n",
+                 "faults[1].action", "resume");
+  expect_refused("faults: [{target: L1, action: pause, at_s: 5}, {target: L2, action: resume, at_s: 8}]\n",
+                 "faults[1].action", "resume");
+  // A kill ends the pause: nothing is left to resume.
+  expect_refused(
+      "faults: [{target: L1, action: pause, at_s: 5}, {target: L1, action: kill, at_s: 6},"
+      " {target: L1, action: resume, at_s: 8}]\n",
+      "faults[2].action", "resume");
+  expect_refused("faults: [{target: plant, action: pause, at_s: 5}]\n", "faults[0].target", "plant");
+  expect_refused("faults: [{target: L1, action: freeze, at_s: 5}]\n", "faults[0].action", "freeze");
+}
+
 // ---- Names and message length ----
 
 TEST(Scenario, ANameOf300CharactersIsRefusedInAShortMessage) {

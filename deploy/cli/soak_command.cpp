@@ -1,0 +1,369 @@
+#include "deploy/cli/soak_command.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <thread>
+
+#include "comm/shm_files.hpp"
+#include "config/scenario.hpp"
+#include "deploy/cli/paths.hpp"
+#include "deploy/fleet/children.hpp"
+#include "deploy/fleet/launcher.hpp"
+#include "deploy/fleet/soak.hpp"
+#include "deploy/fleet/summary.hpp"
+#include "model/params.hpp"
+
+namespace maptr::deploy::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2;
+/// Wall time a fleet's processes get to be gone after its launcher ended, s.
+constexpr double kLeftoverGraceS = 3.0;
+constexpr std::chrono::milliseconds kPoll{100};
+/// Ports of one DDS domain (the RTPS domain gain): a fleet of up to about 120 participant ids,
+/// restarts included, stays within them.
+constexpr int kDomainPorts = 250;
+
+std::atomic<bool> g_interrupted{false};
+void on_interrupt(int) { g_interrupted.store(true); }
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// One `maptr run` of the soak.
+struct FleetRun {
+  int exit_code = -1;
+  bool timed_out = false;
+  double wall_s = 0.0;
+  nlohmann::json summary = nlohmann::json::object();
+};
+
+/// Runs `maptr run yaml --out dir --domain d --quiet` (output to dir.log) and waits for it.
+FleetRun run_fleet(const std::string& bin, const std::string& yaml, const std::string& dir, int domain,
+                   double timeout_s) {
+  const std::string maptr = bin + "/maptr", log = dir + ".log", dom = std::to_string(domain);
+  std::vector<std::string> args = {maptr, "run", yaml, "--out", dir, "--domain", dom, "--quiet"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  FleetRun r;
+  const auto t0 = Clock::now();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+      close(fd);
+    }
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int st = 0;
+  while (waitpid(pid, &st, WNOHANG) != pid) {
+    if (!r.timed_out && since(t0) > timeout_s) {
+      r.timed_out = true;
+      kill(pid, SIGTERM);  // the launcher ends its fleet; its children die with it in any case
+    }
+    std::this_thread::sleep_for(kPoll);
+  }
+  r.wall_s = since(t0);
+  r.exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+  r.summary = fleet::read_json_object(dir + "/summary.json");
+  return r;
+}
+
+/// PIDs of the running processes whose environment carries MAPTR_FLEET_ID=fleet_id.
+std::vector<pid_t> fleet_processes(const std::string& fleet_id) {
+  const std::string needle = "MAPTR_FLEET_ID=" + fleet_id;
+  std::vector<pid_t> out;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(e.path() / "environ", std::ios::binary);
+    std::string env((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (std::size_t p = 0; (p = env.find(needle, p)) != std::string::npos; p += needle.size())
+      if ((p == 0 || env[p - 1] == '\0') &&
+          (p + needle.size() == env.size() || env[p + needle.size()] == '\0'))
+        out.push_back(static_cast<pid_t>(std::stol(name)));
+  }
+  return out;
+}
+
+/// Processes of the fleet still there after a grace period ("" when none); they are killed.
+std::string check_leftovers(const std::string& run_dir) {
+  const nlohmann::json fleet = fleet::read_json_object(run_dir + "/fleet.json");
+  if (!fleet.contains("fleet_id")) return "";  // the fleet never started
+  const std::string id = std::to_string(fleet.value("fleet_id", 0LL));
+  const auto t0 = Clock::now();
+  std::vector<pid_t> left = fleet_processes(id);
+  while (!left.empty() && since(t0) < kLeftoverGraceS) {
+    std::this_thread::sleep_for(kPoll);
+    left = fleet_processes(id);
+  }
+  if (left.empty()) return "";
+  std::string pids;
+  for (pid_t p : left) {
+    pids += " " + std::to_string(p);
+    kill(p, SIGKILL);
+  }
+  return std::to_string(left.size()) + " process(es) of the fleet left:" + pids;
+}
+
+/// Fast DDS files in /dev/shm: the port files in the soak's domain's own port range, and the
+/// segments whose owner is gone (no process holds the flock on their `_el` file).
+struct ShmCount {
+  int ports = 0, orphan_segments = 0;
+};
+
+/// True when no process holds the flock Fast DDS keeps on a live segment's `_el` file.
+bool lock_free(const fs::path& el) {
+  const int fd = ::open(el.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+  ::close(fd);  // releases the lock if we took it
+  return free;
+}
+
+ShmCount count_shm(int domain) {
+  ShmCount c;
+  const int base = comm::rtps_domain_port_base(domain);
+  for (const auto& e : fs::directory_iterator("/dev/shm")) {
+    const std::string n = e.path().filename();
+    const std::string port = n.rfind("sem.", 0) == 0 ? n.substr(4) : n;
+    if (port.rfind("fastrtps_port", 0) == 0) {
+      const int p = std::atoi(port.c_str() + 13);
+      if (p >= base && p < base + kDomainPorts) ++c.ports;
+    } else if (n.rfind("fastrtps_", 0) == 0 && n.size() > 3 && n.compare(n.size() - 3, 3, "_el") == 0 &&
+               lock_free(e.path())) {
+      ++c.orphan_segments;
+    }
+  }
+  return c;
+}
+
+std::string check_shm(const ShmCount& before, const ShmCount& after) {
+  if (after.ports <= before.ports && after.orphan_segments <= before.orphan_segments) return "";
+  return "/dev/shm grew: domain port files " + std::to_string(before.ports) + " -> " +
+         std::to_string(after.ports) + ", segments without owner " + std::to_string(before.orphan_segments) +
+         " -> " + std::to_string(after.orphan_segments);
+}
+
+/// The soak's scenario with `faults`, written where its fleet's `maptr run` reads it.
+std::string write_scenario(config::Scenario s, std::vector<config::FaultSpec> faults,
+                           const std::string& path) {
+  s.faults = std::move(faults);
+  s.validate();
+  std::ofstream(path) << config::to_yaml(s);
+  return path;
+}
+
+/// Running totals of the soak.
+struct Totals {
+  int fleets = 0, failed_fleets = 0;
+  std::map<std::string, int> faults;         ///< applied by kind, and "skipped"
+  std::map<std::string, int> failed_checks;  ///< by check
+  std::map<std::string, int> statuses;       ///< "ok", "degraded"
+  long long applied() const {
+    long long n = 0;
+    for (const auto& [k, v] : faults)
+      if (k != "skipped") n += v;
+    return n;
+  }
+};
+
+struct Soak {
+  Soak(const SoakArgs& args, std::string bin_dir) : a(args), bin(std::move(bin_dir)) {}
+  const SoakArgs& a;
+  std::string bin, out;
+  int domain = 0;
+  config::Scenario sc;
+  soak::Band band;
+  nlohmann::json reference, fleets = nlohmann::json::array();
+  Totals totals;
+};
+
+}  // namespace
+
+CLI::App* add_soak_command(CLI::App& app, SoakArgs& a) {
+  auto* c = app.add_subcommand(
+      "soak", "fleets back to back with seeded random kills, restarts, pauses and resumes; checks each one");
+  c->add_option("--seed", a.seed, "seed of the fault schedules")->check(CLI::Range(0LL, 4294967295LL));
+  c->add_option("--faults", a.faults, "faults to apply over the whole soak")
+      ->check(CLI::Range(1LL, 1000000LL));
+  c->add_option("--agents", a.agents, "agents per fleet (multiple of 4)");
+  c->add_option("--outages", a.outages, "random outages drawn per fleet")->check(CLI::Range(1, 100));
+  c->add_option("--scenario", a.scenario, "scenario YAML (default: deploy/scenarios/soak.yaml)");
+  c->add_option("--out", a.out, "soak folder (default runs/<date>-soak-<seed>)");
+  c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
+      ->check(CLI::Range(0, kMaxDomain));
+  c->add_option("--fleet-timeout", a.fleet_timeout_s, "wall seconds after which a fleet fails")
+      ->check(CLI::Range(10.0, 86400.0));
+  return c;
+}
+
+namespace {
+
+/// One fleet's checks, printed and recorded; true when all of them passed.
+bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, const ShmCount& before) {
+  std::vector<std::pair<std::string, std::string>> failed;  // (check, why)
+  if (r.timed_out) failed.push_back({"timeout", "still running after the fleet timeout"});
+  if (const auto why = soak::check_status(r.summary); !why.empty()) failed.push_back({"status", why});
+  if (const auto why = check_leftovers(dir); !why.empty()) failed.push_back({"processes", why});
+  if (const auto why = check_shm(before, count_shm(s.domain)); !why.empty()) failed.push_back({"shm", why});
+  for (const auto& why : soak::check_wear(r.summary, dir, s.sc.robot.per_side()))
+    failed.push_back({"wear", why});
+  for (const auto& why : soak::check_band(r.summary, s.reference, s.band)) failed.push_back({"band", why});
+  const auto kinds = soak::faults_by_kind(r.summary);
+  for (const auto& [k, v] : kinds) s.totals.faults[k] += v;
+  const std::string status = r.summary.value("status", "none");
+  ++s.totals.statuses[status.substr(0, status.find(':'))];
+  ++s.totals.fleets;
+  if (!failed.empty()) ++s.totals.failed_fleets;
+  nlohmann::json rec = {{"index", index},
+                        {"seed", soak::fleet_seed(static_cast<unsigned>(s.a.seed), index)},
+                        {"dir", dir},
+                        {"status", status},
+                        {"exit_code", r.exit_code},
+                        {"wall_s", r.wall_s},
+                        {"faults", kinds},
+                        {"distance_m", r.summary.value("distance_m", 0.0)},
+                        {"energy_J", r.summary.value("energy_J", 0.0)},
+                        {"distance_dev_pct", soak::deviation_pct(r.summary.value("distance_m", 0.0),
+                                                                 s.reference.value("distance_m", 0.0))},
+                        {"energy_dev_pct", soak::deviation_pct(r.summary.value("energy_J", 0.0),
+                                                               s.reference.value("energy_J", 0.0))},
+                        {"failures", nlohmann::json::array()}};
+  std::set<std::string> checks;
+  for (const auto& [check, why] : failed) {
+    checks.insert(check);
+    rec["failures"].push_back({{"check", check}, {"why", why}});
+  }
+  for (const auto& check : checks) ++s.totals.failed_checks[check];
+  std::printf(
+      "soak: fleet %3d  faults %2lld (kill %d restart %d pause %d resume %d, skipped %d)  %-9s  "
+      "distance %+6.1f%%  energy %+6.1f%%  %5.1f s  %s  [total %lld/%lld]\n",
+      index,
+      static_cast<long long>(kinds.at("kill") + kinds.at("restart") + kinds.at("pause") + kinds.at("resume")),
+      kinds.at("kill"), kinds.at("restart"), kinds.at("pause"), kinds.at("resume"), kinds.at("skipped"),
+      status.substr(0, status.find(':')).c_str(), rec["distance_dev_pct"].get<double>(),
+      rec["energy_dev_pct"].get<double>(), r.wall_s, failed.empty() ? "PASS" : "FAIL", s.totals.applied(),
+      s.a.faults);
+  for (const auto& [check, why] : failed) std::printf("soak:   %s: %s\n", check.c_str(), why.c_str());
+  std::fflush(stdout);
+  s.fleets.push_back(rec);
+  return failed.empty();
+}
+
+void print_table(const Soak& s) {
+  const Totals& t = s.totals;
+  std::printf("\nsoak seed %lld, %d agents, scenario %s\n", s.a.seed, s.sc.robot.agents, s.sc.name.c_str());
+  std::printf("  fleets          %d (ok %d, degraded %d, failed checks %d)\n", t.fleets,
+              t.statuses.count("ok") ? t.statuses.at("ok") : 0,
+              t.statuses.count("degraded") ? t.statuses.at("degraded") : 0, t.failed_fleets);
+  std::printf("  faults applied  %lld\n", t.applied());
+  for (const auto& [k, v] : t.faults) std::printf("    %-13s %d\n", k.c_str(), v);
+  std::printf("  failed checks   %s\n", t.failed_checks.empty() ? "none" : "");
+  for (const auto& [k, v] : t.failed_checks) std::printf("    %-13s %d fleet(s)\n", k.c_str(), v);
+  std::printf("  report          %s/soak.json\n", s.out.c_str());
+}
+
+void write_report(const Soak& s) {
+  nlohmann::json j = {{"seed", s.a.seed},
+                      {"faults_requested", s.a.faults},
+                      {"faults_applied", s.totals.applied()},
+                      {"faults_by_kind", s.totals.faults},
+                      {"agents", s.sc.robot.agents},
+                      {"outages_per_fleet", s.a.outages},
+                      {"scenario", s.sc.name},
+                      {"band",
+                       {{"distance_below_pct", s.band.distance_below_pct},
+                        {"distance_above_pct", s.band.distance_above_pct},
+                        {"energy_pct", s.band.energy_pct}}},
+                      {"reference",
+                       {{"status", s.reference.value("status", "")},
+                        {"distance_m", s.reference.value("distance_m", 0.0)},
+                        {"energy_J", s.reference.value("energy_J", 0.0)},
+                        {"trace_sha256", s.reference.value("trace_sha256", "")}}},
+                      {"fleets", s.fleets.size()},
+                      {"failed_fleets", s.totals.failed_fleets},
+                      {"failed_checks", s.totals.failed_checks},
+                      {"statuses", s.totals.statuses},
+                      {"fleet_results", s.fleets}};
+  std::ofstream(s.out + "/soak.json") << j.dump(2) << "\n";
+}
+
+/// The soak's scenario and folder, checked; throws config::ScenarioError on bad input.
+void set_up(Soak& s) {
+  s.sc = config::load_scenario(s.a.scenario.empty() ? source_dir() + "/deploy/scenarios/soak.yaml"
+                                                    : s.a.scenario);
+  config::set_field(s.sc, "agents", std::to_string(s.a.agents), "--agents");
+  s.sc.faults.clear();
+  s.sc.validate();
+  s.domain = resolve_domain(s.a.domain);
+  if (const std::string why = domain_problem(s.domain, s.sc.robot.agents); !why.empty())
+    throw config::ScenarioError(why);
+  s.out = s.a.out.empty() ? unique_run_dir("runs", "soak-" + std::to_string(s.a.seed)) : s.a.out;
+  fs::create_directories(s.out);
+}
+
+}  // namespace
+
+int cmd_soak(const SoakArgs& a, const std::string& bin_dir) {
+  Soak s{a, bin_dir};
+  try {
+    set_up(s);
+  } catch (const config::ScenarioError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const model::ParamError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  std::signal(SIGINT, on_interrupt);  // the fleet's launcher gets it too and ends its run
+  std::signal(SIGTERM, on_interrupt);
+  std::printf("soak: folder %s, domain %d; the fault-free run first\n", s.out.c_str(), s.domain);
+  std::fflush(stdout);
+  const std::string ref_dir = s.out + "/reference";
+  const FleetRun ref = run_fleet(bin_dir, write_scenario(s.sc, {}, s.out + "/reference.yaml"), ref_dir,
+                                 s.domain, a.fleet_timeout_s);
+  s.reference = ref.summary;
+  if (s.reference.value("status", "") != "ok") {
+    std::printf("soak: the fault-free run ended '%s' (see %s): no reference\n",
+                s.reference.value("status", "none").c_str(), ref_dir.c_str());
+    return kExitFailed;
+  }
+  std::printf("soak: fault-free: distance %.1f m, energy %.1f J, %.1f s wall\n",
+              s.reference.value("distance_m", 0.0), s.reference.value("energy_J", 0.0), ref.wall_s);
+  for (int i = 0; s.totals.applied() < a.faults; ++i) {
+    const std::string dir = s.out + "/fleet-" + std::to_string(i);
+    const auto faults = soak::fleet_faults(static_cast<unsigned>(a.seed), i, s.sc, a.outages);
+    const ShmCount before = count_shm(s.domain);
+    const FleetRun r =
+        run_fleet(bin_dir, write_scenario(s.sc, faults, dir + ".yaml"), dir, s.domain, a.fleet_timeout_s);
+    check_fleet(s, i, r, dir, before);
+    write_report(s);
+    if (g_interrupted.load()) break;
+  }
+  print_table(s);
+  write_report(s);
+  return s.totals.failed_fleets == 0 ? kExitOk : kExitFailed;
+}
+
+}  // namespace maptr::deploy::cli
