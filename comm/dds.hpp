@@ -30,12 +30,16 @@ namespace maptr::comm {
 /// How a participant finds the others.
 struct DdsOptions {
   int domain = 0;                       ///< DDS domain id (tests use a private one)
-  std::string discovery_server;         ///< "127.0.0.1:PORT": be a client of it; empty: simple discovery
+  /// "HOST:PORT[,HOST:PORT...]": be a client of every one of these servers (server i has the
+  /// GUID prefix of index i); empty: simple discovery
+  std::string discovery_server;
+  int server_index = 0;                 ///< is_server: which entry of discovery_server this is
   double lease_s = 2.0;                 ///< participant and liveliness lease, s
   bool is_server = false;               ///< this participant is the discovery server
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
   int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
-  bool shm = true;                      ///< shared memory for data (else UDP on loopback only)
+  bool shm = true;                      ///< shared memory for data (else UDP only)
+  std::string interface_address = "127.0.0.1";  ///< the one IPv4 interface UDP uses
   uint32_t fleet_id = 0;                ///< the run's fleet id (comm/fleet_ids.hpp); 0: none
 };
 
@@ -192,8 +196,12 @@ class Participant {
   eprosima::fastdds::dds::Subscriber* sub_ = nullptr;
 };
 
-/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER, MAPTR_LEASE_S, MAPTR_TRANSPORT,
-/// MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES and MAPTR_FLEET_ID into the options (the
+/// The entries of a comma-separated list of discovery servers.
+std::vector<std::string> split_servers(const std::string& list);
+
+/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER, MAPTR_DISCOVERY_INDEX, MAPTR_LEASE_S,
+/// MAPTR_TRANSPORT, MAPTR_INTERFACE, MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES and
+/// MAPTR_FLEET_ID into the options (the
 /// launcher sets them for its children); explicit command-line values override them.
 DdsOptions options_from_env();
 

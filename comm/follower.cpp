@@ -1,5 +1,7 @@
 #include "comm/follower.hpp"
 
+#include <cstdlib>
+
 #include "comm/fleet_guid.hpp"
 
 #include <unistd.h>
@@ -40,7 +42,10 @@ bool TickFollower::from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& 
 int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick) {
   auto& stop = stop_flag();
   const std::size_t per_side = static_cast<std::size_t>(args_.scenario.robot.per_side());
-  PlantWatch plant(2.0 * args_.dds.lease_s);
+  // On a fleet of several hosts the launcher sets MAPTR_PLANT_LOSS_S: a process cut off by a
+  // network partition waits that long for the plant to come back instead of two leases.
+  const char* loss = std::getenv("MAPTR_PLANT_LOSS_S");
+  PlantWatch plant(loss ? std::atof(loss) : 2.0 * args_.dds.lease_s);
   bool announced = false;
   long long last_tick = -1;
   uint64_t seen = signal_.count();

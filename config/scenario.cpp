@@ -165,6 +165,16 @@ void check_faults(const Scenario& s, const Context& c) {
     if (parse_agent_name(f.target, side, idx) && idx >= s.robot.per_side())
       c.fail(base + ".target", f.target,
              "no such agent (" + std::to_string(s.robot.per_side()) + " per side)");
+    int host = 0;
+    const bool host_target = parse_host_name(f.target, host);
+    if (is_host_action(f.action) != host_target)
+      c.fail(base + ".target", f.target,
+             is_host_action(f.action) ? "action " + f.action + " needs a host (h0, h1, ...)"
+                                      : "action " + f.action + " needs a process, not a host");
+    if (host_target && is_host_action(f.action) && !s.hosts.enabled())
+      c.fail(base + ".target", f.target, "a host fault needs a fleet on several hosts (--hosts N)");
+    if (host_target && s.hosts.enabled() && host >= s.hosts.count)
+      c.fail(base + ".target", f.target, "no such host (" + std::to_string(s.hosts.count) + " hosts: h0..)");
     if (f.at_s > s.duration_s)
       c.fail(base + ".at_s", model::param_value(f.at_s), "must be within [0, duration_s]");
   }
@@ -313,6 +323,18 @@ bool parse_agent_name(const std::string& n, int& side, int& index) {
     if (n[i] < '0' || n[i] > '9') return false;
   if (n.size() > 5) return false;
   side = n[0] == 'L' ? 0 : 1;
+  index = std::stoi(n.substr(1));
+  return true;
+}
+
+bool is_host_action(const std::string& a) { return a == "kill-host" || a == "partition" || a == "heal"; }
+
+std::string host_name(int index) { return "h" + std::to_string(index); }
+
+bool parse_host_name(const std::string& n, int& index) {
+  if (n.size() < 2 || n.size() > 4 || n[0] != 'h') return false;
+  for (std::size_t i = 1; i < n.size(); ++i)
+    if (n[i] < '0' || n[i] > '9') return false;
   index = std::stoi(n.substr(1));
   return true;
 }

@@ -10,11 +10,15 @@ namespace maptr::deploy::cli {
 namespace fs = std::filesystem;
 
 CLI::App* add_signal_command(CLI::App& app, const std::string& action, SignalArgs& a) {
-  const std::string what = action == "kill"
-                               ? "SIGKILL a process of a running fleet (e.g. L3, group-R, central)"
-                               : "start a killed process of a running fleet again";
+  const std::string what =
+      action == "kill"        ? "SIGKILL a process of a running fleet (e.g. L3, group-R, central)"
+      : action == "restart"   ? "start a killed process of a running fleet again"
+      : action == "kill-host" ? "kill every process of a host of a running fleet and cut its link (e.g. h2)"
+      : action == "partition" ? "cut the link of a host of a running fleet; its processes keep running"
+                              : "link a cut (or killed) host of a running fleet again";
   auto* c = app.add_subcommand(action, what);
-  c->add_option("target", a.target, "process name")->required();
+  c->add_option("target", a.target, action == "kill" || action == "restart" ? "process name" : "host (h0, h1, ...)")
+      ->required();
   c->add_option("--run", a.run_dir, "run folder (default: the newest running one under runs/)");
   return c;
 }

@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|level2|experiment|bench|kill|restart`).
+// dispatches (`maptr run|level2|experiment|bench|kill|restart|kill-host|partition|heal`).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -19,13 +19,16 @@ int main(int argc, char** argv) {
   Level2Args level2_args;
   ExperimentArgs experiment_args;
   BenchArgs bench_args;
-  SignalArgs kill_args, restart_args;
+  SignalArgs kill_args, restart_args, kill_host_args, partition_args, heal_args;
   auto* run = add_run_command(app, run_args);
   auto* level2 = add_level2_command(app, level2_args);
   auto* experiment = add_experiment_command(app, experiment_args);
   auto* bench = add_bench_command(app, bench_args);
   auto* kill = add_signal_command(app, "kill", kill_args);
   auto* restart = add_signal_command(app, "restart", restart_args);
+  auto* kill_host = add_signal_command(app, "kill-host", kill_host_args);
+  auto* partition = add_signal_command(app, "partition", partition_args);
+  auto* heal = add_signal_command(app, "heal", heal_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -42,6 +45,9 @@ int main(int argc, char** argv) {
     if (level2->parsed()) return cmd_level2(level2_args);
     if (kill->parsed()) return cmd_signal("kill", kill_args);
     if (restart->parsed()) return cmd_signal("restart", restart_args);
+    if (kill_host->parsed()) return cmd_signal("kill-host", kill_host_args);
+    if (partition->parsed()) return cmd_signal("partition", partition_args);
+    if (heal->parsed()) return cmd_signal("heal", heal_args);
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 1;

@@ -40,6 +40,9 @@ struct FleetConfig {
   double discovery_term_s = 3.0;
   /// "auto" transport: shared memory up to this many agents, UDP above.
   int shm_max_agents = 64;
+  /// A fleet on several hosts: how long a process cut off from the plant (a partition) waits
+  /// for it to come back before it ends, s.
+  double host_plant_loss_s = 120.0;
   /// Period of the progress line, s.
   double progress_period_s = 1.0;
   /// Poll periods of the discovery loop, the run loop and a fault gate's wait.

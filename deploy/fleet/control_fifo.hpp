@@ -1,6 +1,7 @@
 #pragma once
 // The launcher's control FIFO, RUN_DIR/control: another terminal writes lines
-// "kill NAME" or "restart NAME" (`maptr kill|restart NAME`), the launcher applies them at once.
+// "kill NAME" or "restart NAME" (`maptr kill|restart NAME`), or "kill-host|partition|heal hN"
+// (`maptr kill-host|partition|heal hN`); the launcher applies them at once.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -9,7 +10,7 @@ namespace maptr::deploy::fleet {
 
 struct Command {
   std::string action, target;
-  bool valid = false;  ///< the action is "kill" or "restart"
+  bool valid = false;  ///< the action is kill, restart, kill-host, partition or heal
 };
 
 /// Splits a byte stream into commands, one per complete line; a partial line waits for the

@@ -48,6 +48,8 @@ class FaultSchedule {
   std::vector<config::FaultSpec> due(double gate_t);
   /// Records a fault applied at simulated time at_s (wall clock wall_ms, ms since the epoch).
   void record(const config::FaultSpec& f, double at_s, double wall_ms, const FaultAction& a);
+  /// Adds key = value to the last record.
+  void annotate_last(const std::string& key, const nlohmann::json& value) { records_.back()[key] = value; }
   /// The run ended: every fault not yet due is recorded as skipped.
   void close();
 

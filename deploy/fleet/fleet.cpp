@@ -52,12 +52,16 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   // Restarts cycle through as many participant-id windows as stay below port 65536.
   if ((comm::rtps_max_participant_id(o.domain) + 1) / fleet_participants(agents) < 1)
     throw std::runtime_error(domain_problem(o.domain, agents));
-  ds_ = std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
-                                          cfg.discovery_listen_s,
-                                          cfg.discovery_restart_leases * cfg.lease_s(agents));
   // Participant ids: 0 the discovery server, 1 the launcher, then the fleet.
   dds_.domain = o.domain;
-  dds_.discovery_server = ds_->address();
+  if (sc_.hosts.enabled()) {
+    setup_hosts();  // a server per host; the launcher on the hosts' network
+  } else {
+    ds_.push_back(std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
+                                                    cfg.discovery_listen_s,
+                                                    cfg.discovery_restart_leases * cfg.lease_s(agents)));
+    dds_.discovery_server = ds_.front()->address();
+  }
   dds_.participant_id = comm::kLauncherParticipantId;
   // The fleet id makes every participant's GUID prefix say which process of this fleet it is
   // (comm/fleet_guid.hpp): followers take ticks only from the plant's writer.
@@ -79,7 +83,8 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
           {"MAPTR_DOMAIN", std::to_string(o.domain)},
           {"MAPTR_DISCOVERY_SERVER", dds_.discovery_server},
           {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)}};
-  ds_->start_or_throw(env_, ids_);
+  if (on_hosts()) env_["MAPTR_PLANT_LOSS_S"] = std::to_string(cfg.host_plant_loss_s);
+  for (auto& ds : ds_) ds->start_or_throw(env_, ids_);
   participant_ = std::make_unique<comm::Participant>("launcher", dds_);
   auto& p = *participant_;
   p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &ready_);
@@ -89,6 +94,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   w_control_ = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
   p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &gates_);
   make_children();
+  if (on_hosts()) place_children();
   t_launch_ = Clock::now();
 }
 
@@ -133,16 +139,18 @@ void Fleet::write_fleet() const {
   // The fleet's coordinates, for tools and for processes started by hand.
   nlohmann::json fleet = {{"launcher_pid", getpid()},
                           {"domain", o_.domain},
-                          {"discovery_server", ds_->address()},
-                          {"discovery_server_pid", ds_->pid()},
+                          {"discovery_server", dds_.discovery_server},
+                          {"discovery_server_pid", ds_.front()->pid()},
                           {"lease_s", dds_.lease_s},
                           {"fleet_id", dds_.fleet_id},
                           {"config", cfg_path_},
                           {"run_dir", o_.run_dir},
                           {"bin_dir", o_.bin_dir}};
-  for (const auto& c : kids_)
+  for (const auto& c : kids_) {
     fleet["processes"].push_back(
         {{"name", c.name}, {"pid", c.pid}, {"external", c.external}, {"participant_id", c.base_id}});
+    if (c.host >= 0) fleet["processes"].back()["host"] = config::host_name(c.host);
+  }
   std::ofstream(o_.run_dir + "/fleet.json.tmp") << fleet.dump(2) << "\n";
   // Readers never see half a file.
   std::filesystem::rename(o_.run_dir + "/fleet.json.tmp", o_.run_dir + "/fleet.json");
@@ -174,7 +182,7 @@ void Fleet::start_processes() {
   spawn_wave(waves_->first());
   print_external_commands();
   fifo_ = std::make_unique<ControlFifo>(o_.run_dir);
-  log_.info("launching {} processes in waves (discovery server {})", kids_.size(), ds_->address());
+  log_.info("launching {} processes in waves (discovery server {})", kids_.size(), dds_.discovery_server);
   if (o_.progress)
     std::fprintf(stderr, "maptr: launched %zu processes (%d agents, 2 groups, central, plant)\n",
                  kids_.size(), sc_.robot.agents);
@@ -245,12 +253,15 @@ void Fleet::end() {
   wait_all(kids_, cfg_.end_kill_s, reap_expected);
   fifo_.reset();
   participant_.reset();
-  ds_->stop(cfg_.discovery_term_s);  // the discovery server goes last
-  clean_shm_after_run(o_.domain, ids_.highest(), ds_->port(), log_);
+  for (auto& ds : ds_) ds->stop(cfg_.discovery_term_s);  // the discovery servers go last
+  if (on_hosts()) record_hosts();
+  net_.reset();  // the namespaces, veths and bridge
+  clean_shm_after_run(o_.domain, ids_.highest(), ds_.front()->port(), log_);
 }
 
 nlohmann::json Fleet::summary() {
-  rec_.discovery_restarts = ds_->restarts();
+  rec_.discovery_restarts = 0;
+  for (const auto& ds : ds_) rec_.discovery_restarts += ds->restarts();
   rec_.last_tick = clock_.state();
   rec_.failures = schedule_.records();
   rec_.launcher_rejected = clock_.rejected();

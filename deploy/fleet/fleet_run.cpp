@@ -47,22 +47,23 @@ void Fleet::publish_member(const Child& c, msg::MemberEvent kind) {
 }
 
 void Fleet::reap(bool expected) {
-  bool started = false;
-  if (!expected && ds_->restart_if_due(env_, ids_, started)) {
+  for (auto& ds : ds_) {
+    bool started = false;
+    if (expected || !ds->restart_if_due(env_, ids_, started)) continue;
     if (started)
-      log_.info("the discovery server runs again (pid {})", ds_->pid());
+      log_.info("the discovery server {} runs again (pid {})", ds->address(), ds->pid());
     else
-      log_.error("the discovery server did not start again");
+      log_.error("the discovery server {} did not start again", ds->address());
   }
   while (const auto e = reap_one()) on_exit(*e, expected);
 }
 
 void Fleet::on_exit(const Exit& e, bool expected) {
-  if (ds_->on_exit(e, expected)) {
+  for (auto& ds : ds_) {
+    if (!ds->on_exit(e, expected)) continue;
     // Established matches survive; the restarted server lets the clients re-register.
     if (!expected)
-      log_.warn("the discovery server (pid {}) died: exit {} signal {}; starting it again", e.pid,
-                e.exit_code, e.signal);
+      log_.warn("the discovery server (pid {}) died: exit {} signal {}", e.pid, e.exit_code, e.signal);
     return;
   }
   Child* c = nullptr;
@@ -94,16 +95,17 @@ void Fleet::apply_fault(const config::FaultSpec& f, double at_s) {
   const bool discovery = f.target == kDiscoveryTarget;
   Child* c = discovery ? nullptr : find(f.target);
   TargetState s;
-  if (discovery) s = {true, false, ds_->running()};
+  if (discovery) s = {true, false, ds_.front()->running()};
   if (c) s = {true, c->external, c->running};
   const FaultAction a = decide_fault(f, s);
   if (a.kind == FaultAction::kKill && discovery) {
-    ds_->kill_now();
-    log_.warn("fault: killed the discovery server (pid {}) at t={:.2f} s", ds_->pid(), at_s);
+    ds_.front()->kill_now();
+    log_.warn("fault: killed the discovery server (pid {}) at t={:.2f} s", ds_.front()->pid(), at_s);
   } else if (a.kind == FaultAction::kKill) {
     kill(c->pid, SIGKILL);
     log_.warn("fault: killed {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
   } else if (a.kind == FaultAction::kRestart) {
+    if (on_hosts()) move_off_lost_host(*c);
     spawn_child(*c);
     c->awaiting_ready = true;
     log_.warn("fault: restarted {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
@@ -125,6 +127,10 @@ void Fleet::open_gate(const msg::FaultGate& g) {
   std::vector<std::string> killed;
   for (const auto& f : schedule_.due(g.t())) {
     if (f.action == "kill") killed.push_back(f.target);
+    if (config::is_host_action(f.action)) {
+      for (const auto& k : apply_host_fault(f, g.t())) killed.push_back(k);
+      continue;
+    }
     apply_fault(f, g.t());
   }
   const auto t0 = Clock::now();
@@ -164,7 +170,11 @@ void Fleet::take_commands() {
       continue;
     }
     log_.info("command: {} {}", c.action, c.target);
-    apply_fault(config::FaultSpec{c.target, c.action, clock_.state().t}, clock_.state().t);
+    const config::FaultSpec f{c.target, c.action, clock_.state().t};
+    if (config::is_host_action(c.action))
+      apply_host_fault(f, clock_.state().t);
+    else
+      apply_fault(f, clock_.state().t);
   }
 }
 
