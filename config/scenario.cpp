@@ -66,8 +66,55 @@ Segment read_segment(const YAML::Node& n, const std::string& base, const Context
   return g.seg;
 }
 
-/// The scenario's lists: trajectory.segments and faults.
+/// A text value of the hosts section.
+std::string host_text(const YAML::Node& v, const std::string& path, const Context& c) {
+  if (!v.IsScalar()) c.fail(path, describe(v), "must be text");
+  return v.Scalar();
+}
+
+/// hosts: {count, launcher_address, machines: [{address, command}], placement: ["NAME=hN"]}.
+void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
+  if (!v.IsMap()) c.fail("hosts", describe(v), "must be a mapping");
+  for (auto it = v.begin(); it != v.end(); ++it) {
+    const std::string key = it->first.Scalar(), path = "hosts." + key;
+    const YAML::Node& x = it->second;
+    if (key == "count") {
+      int n = 0;
+      if (!x.IsScalar() || !YAML::convert<int>::decode(x, n) || n < 1 || n > kMaxHosts)
+        c.fail(path, describe(x), "must be a whole number from 1 to " + std::to_string(kMaxHosts));
+      h.count = n;
+    } else if (key == "launcher_address") {
+      h.launcher_address = host_text(x, path, c);
+    } else if (key == "placement" && x.IsSequence()) {
+      for (std::size_t i = 0; i < x.size(); ++i)
+        h.placement.push_back(host_text(x[i], path + "[" + std::to_string(i) + "]", c));
+    } else if (key == "machines" && x.IsSequence()) {
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const std::string base = path + "[" + std::to_string(i) + "]";
+        if (!x[i].IsMap() || !x[i]["address"])
+          c.fail(base, describe(x[i]), "must be {address: IP, command: PREFIX}");
+        h.machines.push_back({host_text(x[i]["address"], base + ".address", c),
+                              x[i]["command"] ? host_text(x[i]["command"], base + ".command", c) : ""});
+      }
+    } else {
+      c.fail(path, describe(x), "unknown key, or not a list (count, launcher_address, machines, placement)");
+    }
+  }
+  if (!h.machines.empty() && h.count == 0) h.count = static_cast<int>(h.machines.size());
+  if (!h.machines.empty() && static_cast<int>(h.machines.size()) != h.count)
+    c.fail("hosts.machines", std::to_string(h.machines.size()) + " machines",
+           "must list one machine per host");
+  if (!h.machines.empty() && h.launcher_address.empty())
+    c.fail("hosts.launcher_address", "(missing)",
+           "real machines need the address they reach this machine at");
+}
+
+/// The scenario's lists: trajectory.segments and faults; and the hosts section.
 bool read_list(const std::string& path, const YAML::Node& v, Scenario& s, const Context& c) {
+  if (path == "hosts") {
+    read_hosts(v, s.hosts, c);
+    return true;
+  }
   if (path != "trajectory.segments" && path != "faults") return false;
   if (!v.IsSequence()) c.fail(path, describe(v), "must be a list");
   if (path == "faults") {
@@ -280,6 +327,18 @@ std::string to_yaml(const Scenario& s) {
     faults.push_back(m);
   }
   root["faults"] = faults;
+  if (s.hosts.enabled()) {
+    root["hosts"]["count"] = s.hosts.count;
+    if (!s.hosts.launcher_address.empty()) root["hosts"]["launcher_address"] = s.hosts.launcher_address;
+    for (const auto& m : s.hosts.machines) {
+      YAML::Node n;
+      n["address"] = m.address;
+      n["command"] = m.command;
+      n.SetStyle(YAML::EmitterStyle::Flow);
+      root["hosts"]["machines"].push_back(n);
+    }
+    for (const auto& p : s.hosts.placement) root["hosts"]["placement"].push_back(p);
+  }
   YAML::Emitter e;
   e << root;
   return std::string(e.c_str()) + "\n";

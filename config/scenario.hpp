@@ -56,6 +56,9 @@ bool is_host_action(const std::string& action);
 bool parse_host_name(const std::string& name, int& index);
 std::string host_name(int index);
 
+/// Most hosts of one fleet.
+constexpr int kMaxHosts = 64;
+
 /// One host of a fleet spread over several (deploy/fleet/hosts.hpp runs them). Without an
 /// address the launcher makes the host a network namespace of this machine; with one, the
 /// processes placed there are started through `command` (e.g. "ssh user@board1"), which must

@@ -22,8 +22,7 @@ namespace {
 
 /// Exit codes of `maptr run`.
 constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitDegraded = 3;
-/// Most hosts of one fleet.
-constexpr int kMaxHosts = 64;
+
 
 void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::string& action) {
   for (const auto& spec : specs) {
@@ -103,7 +102,7 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--transport", a.transport, "data transport: shm, udp or auto (shm up to 64 agents)")
       ->check(CLI::IsMember({"auto", "shm", "udp"}));
   run->add_option("--hosts", a.hosts, "run the fleet on N hosts (network namespaces; needs root)")
-      ->check(CLI::Range(1, kMaxHosts));
+      ->check(CLI::Range(1, config::kMaxHosts));
   run->add_option("--place", a.placement, "put a process on a host, e.g. central=h1 (repeatable)");
   run->add_option("--kill-host", a.kill_hosts, "kill every process of a host and cut its link, e.g. h2@20");
   run->add_option("--partition", a.partitions, "cut a host's link at a simulated time, e.g. h2@20");

@@ -14,7 +14,8 @@
 namespace maptr::deploy {
 
 /// Kills and restarts of agents and controllers (never the plant) at random simulated times,
-/// the same for the same seed and scenario. Every killed process is restarted 2-8 s later.
+/// the same for the same seed and scenario. Every killed process is restarted 2-8 s later. On
+/// several hosts, one host other than h0 is also cut off and healed 2-8 s later.
 std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s, int faults = 4);
 
 namespace fleet {

@@ -7,6 +7,7 @@
 
 #include "config/scenario.hpp"
 #include "deploy/fleet/control_fifo.hpp"
+#include "deploy/fleet/fault_schedule.hpp"
 #include "deploy/fleet/hosts.hpp"
 
 namespace {
@@ -97,6 +98,67 @@ TEST(HostFaults, ControlFifoTakesHostCommands) {
   EXPECT_TRUE(cmds[0].valid && cmds[1].valid && cmds[2].valid);
   EXPECT_FALSE(cmds[3].valid);
   EXPECT_EQ(cmds[0].target, "h2");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(HostsSection, ReadWrittenAndReadBack) {
+  const std::string yaml =
+      "name: two-boards\n"
+      "hosts:\n"
+      "  launcher_address: 192.168.1.10\n"
+      "  machines:\n"
+      "    - {address: 192.168.1.10, command: ''}\n"
+      "    - {address: 192.168.1.11, command: ssh pi@192.168.1.11}\n"
+      "  placement: [central=h1]\n";
+  const auto s = maptr::config::parse_scenario(yaml, "test");
+  EXPECT_EQ(s.hosts.count, 2);
+  ASSERT_EQ(s.hosts.machines.size(), 2u);
+  EXPECT_EQ(s.hosts.machines[1].command, "ssh pi@192.168.1.11");
+  const auto again = maptr::config::parse_scenario(maptr::config::to_yaml(s), "again");
+  EXPECT_EQ(again.hosts.count, 2);
+  EXPECT_EQ(again.hosts.machines[1].address, "192.168.1.11");
+  EXPECT_EQ(again.hosts.placement, std::vector<std::string>{"central=h1"});
+  EXPECT_EQ(again.hosts.launcher_address, "192.168.1.10");
+}
+
+TEST(HostsSection, BadValuesNameTheField) {
+  for (const char* bad : {"hosts: {count: 0}\n", "hosts: {count: 3, disks: 2}\n",
+                          "hosts: {machines: [{address: 10.0.0.1}]}\n"}) {
+    try {
+      maptr::config::parse_scenario(bad, "test");
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const maptr::config::ScenarioError& e) {
+      EXPECT_NE(std::string(e.what()).find("hosts."), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(HostFaults, ChaosOnHostsCutsOffAHostOtherThanThePlantsAndHealsIt) {
+  maptr::config::Scenario s;
+  s.hosts.count = 3;
+  const auto plan = maptr::deploy::chaos_schedule(7, s);
+  int partitions = 0;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    if (plan[i].action != "partition") continue;
+    ++partitions;
+    EXPECT_NE(plan[i].target, "h0");
+    ASSERT_LT(i + 1, plan.size());
+    EXPECT_EQ(plan[i + 1].action, "heal");
+    EXPECT_EQ(plan[i + 1].target, plan[i].target);
+    EXPECT_GE(plan[i + 1].at_s, plan[i].at_s + 2.0 - 1e-9);
+  }
+  EXPECT_EQ(partitions, 1);
+  s.validate();
+  maptr::config::Scenario one;
+  for (const auto& f : maptr::deploy::chaos_schedule(7, one))
+    EXPECT_FALSE(maptr::config::is_host_action(f.action));
 }
 
 }  // namespace
