@@ -65,10 +65,17 @@ rtps::Locator_t parse_locator(const std::string& addr) {
   return loc;
 }
 
-rtps::GuidPrefix_t server_prefix() {
+rtps::GuidPrefix_t server_prefix(int index) {
   rtps::GuidPrefix_t p;
-  eprosima::fastdds::rtps::get_server_client_default_guidPrefix(0, p);
+  eprosima::fastdds::rtps::get_server_client_default_guidPrefix(index, p);
   return p;
+}
+
+rtps::RemoteServerAttributes remote_server(const std::string& address, int index) {
+  rtps::RemoteServerAttributes server;
+  server.guidPrefix = server_prefix(index);
+  server.metatrafficUnicastLocatorList.push_back(parse_locator(address));
+  return server;
 }
 
 }  // namespace
@@ -97,6 +104,17 @@ rtps::Locator_t shm_unicast_locator() {
   return loc;
 }
 
+std::vector<std::string> split_servers(const std::string& list) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  while (from <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', from), list.size());
+    if (comma > from) out.push_back(list.substr(from, comma - from));
+    from = comma + 1;
+  }
+  return out;
+}
+
 Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   dds::DomainParticipantQos q = dds::PARTICIPANT_QOS_DEFAULT;
   q.name(name);
@@ -108,21 +126,30 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   disc.leaseDuration_announcementperiod =
       eprosima::fastrtps::Duration_t(static_cast<int32_t>(ann_ms / 1000), static_cast<uint32_t>((ann_ms % 1000) * 1000000));
 
+  // Several servers (one per host of a fleet on several hosts): a client registers with every
+  // one, and each server also connects to the others, so that any one of them is enough.
+  const std::vector<std::string> servers = split_servers(o.discovery_server);
   if (o.is_server) {
-    if (o.discovery_server.empty()) throw std::invalid_argument("discovery server address missing");
+    if (o.server_index < 0 || o.server_index >= static_cast<int>(servers.size()))
+      throw std::invalid_argument("discovery server address missing");
     disc.discoveryProtocol = rtps::DiscoveryProtocol_t::SERVER;
-    q.wire_protocol().prefix = server_prefix();
-    q.wire_protocol().builtin.metatrafficUnicastLocatorList.push_back(parse_locator(o.discovery_server));
-  } else if (!o.discovery_server.empty()) {
+    q.wire_protocol().prefix = server_prefix(o.server_index);
+    q.wire_protocol().builtin.metatrafficUnicastLocatorList.push_back(
+        parse_locator(servers[static_cast<std::size_t>(o.server_index)]));
+    for (std::size_t i = 0; i < servers.size(); ++i)
+      if (static_cast<int>(i) != o.server_index)
+        disc.m_DiscoveryServers.push_back(remote_server(servers[i], static_cast<int>(i)));
+  } else if (!servers.empty()) {
     disc.discoveryProtocol = rtps::DiscoveryProtocol_t::CLIENT;
-    rtps::RemoteServerAttributes server;
-    server.guidPrefix = server_prefix();
-    server.metatrafficUnicastLocatorList.push_back(parse_locator(o.discovery_server));
-    disc.m_DiscoveryServers.push_back(server);
-    disc.discoveryServer_client_syncperiod = eprosima::fastrtps::Duration_t(0, 250 * 1000000);
+    for (std::size_t i = 0; i < servers.size(); ++i)
+      disc.m_DiscoveryServers.push_back(remote_server(servers[i], static_cast<int>(i)));
   }
-  // Shared memory carries the data between processes on this host; UDP on loopback carries
-  // discovery (to the server) and is the fallback.
+  if (!servers.empty() && (!o.is_server || servers.size() > 1))
+    disc.discoveryServer_client_syncperiod = eprosima::fastrtps::Duration_t(0, 250 * 1000000);
+  // Shared memory carries the data between processes on this host; UDP on one interface
+  // (loopback, or the host's address on a fleet of several hosts) carries discovery and the
+  // data to other hosts. Fast DDS uses a peer's shared-memory locator only when the peer
+  // announces the same host id (a hash of the host name and the IPv4 addresses it sees).
   q.transport().use_builtin_transports = false;
   if (o.shm) {
     auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
@@ -133,7 +160,7 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
     if (o.shm_data_only) q.wire_protocol().default_unicast_locator_list.push_back(shm_unicast_locator());
   }
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-  udp->interfaceWhiteList.emplace_back("127.0.0.1");
+  udp->interfaceWhiteList.emplace_back(o.interface_address);
   q.transport().user_transports.push_back(udp);
 
   if (o.participant_id >= 0) q.wire_protocol().participant_id = o.participant_id;
@@ -239,6 +266,8 @@ DdsOptions options_from_env() {
   DdsOptions o;
   if (const char* d = std::getenv("MAPTR_DOMAIN")) o.domain = std::atoi(d);
   if (const char* s = std::getenv("MAPTR_DISCOVERY_SERVER")) o.discovery_server = s;
+  if (const char* i = std::getenv("MAPTR_DISCOVERY_INDEX")) o.server_index = std::atoi(i);
+  if (const char* a = std::getenv("MAPTR_INTERFACE")) o.interface_address = a;
   if (const char* l = std::getenv("MAPTR_LEASE_S")) o.lease_s = std::atof(l);
   if (const char* t = std::getenv("MAPTR_TRANSPORT")) {
     o.shm = std::string(t) != "udp";

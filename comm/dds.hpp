@@ -32,14 +32,18 @@ namespace maptr::comm {
 /// How a participant finds the others.
 struct DdsOptions {
   int domain = 0;                       ///< DDS domain id (tests use a private one)
-  std::string discovery_server;         ///< "127.0.0.1:PORT": be a client of it; empty: simple discovery
+  /// "HOST:PORT[,HOST:PORT...]": be a client of every one of these servers (server i has the
+  /// GUID prefix of index i); empty: simple discovery
+  std::string discovery_server;
+  int server_index = 0;                 ///< is_server: which entry of discovery_server this is
   double lease_s = 2.0;                 ///< participant and liveliness lease, s
   bool is_server = false;               ///< this participant is the discovery server
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
   int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
-  bool shm = true;                      ///< shared memory for data (else UDP on loopback only)
+  bool shm = true;                      ///< shared memory for data (else UDP only)
   bool shm_data_only = true;            ///< with shm: user data on shared memory only, UDP for discovery
   uint32_t shm_port_queue = 0;          ///< messages the shared-memory listening port holds; 0: default
+  std::string interface_address = "127.0.0.1";  ///< the one IPv4 interface UDP uses
   uint32_t fleet_id = 0;                ///< the run's fleet id (comm/fleet_ids.hpp); 0: none
   /// Folder of a secure domain (comm/security.hpp): the participant authenticates as the
   /// identity of its name, encrypts and enforces its permissions; empty: a plain domain.
@@ -292,7 +296,10 @@ class Participant {
 /// well-known port is filled in at creation).
 eprosima::fastrtps::rtps::Locator_t shm_unicast_locator();
 
-/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER, MAPTR_LEASE_S, MAPTR_TRANSPORT ("shm": data on
+/// The entries of a comma-separated list of discovery servers.
+std::vector<std::string> split_servers(const std::string& list);
+
+/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER (one or a comma-separated list), MAPTR_DISCOVERY_INDEX, MAPTR_LEASE_S, MAPTR_INTERFACE, MAPTR_TRANSPORT ("shm": data on
 /// shared memory only; "shm+udp": data on both; "udp": loopback UDP only), MAPTR_SHM_PORT_QUEUE,
 /// MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES, MAPTR_FLEET_ID and MAPTR_SECURITY_DIR into the options (the
 /// launcher sets them for its children); explicit command-line values override them.

@@ -66,8 +66,55 @@ Segment read_segment(const YAML::Node& n, const std::string& base, const Context
   return g.seg;
 }
 
-/// The scenario's lists: trajectory.segments and faults.
+/// A text value of the hosts section.
+std::string host_text(const YAML::Node& v, const std::string& path, const Context& c) {
+  if (!v.IsScalar()) c.fail(path, describe(v), "must be text");
+  return v.Scalar();
+}
+
+/// hosts: {count, launcher_address, machines: [{address, command}], placement: ["NAME=hN"]}.
+void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
+  if (!v.IsMap()) c.fail("hosts", describe(v), "must be a mapping");
+  for (auto it = v.begin(); it != v.end(); ++it) {
+    const std::string key = it->first.Scalar(), path = "hosts." + key;
+    const YAML::Node& x = it->second;
+    if (key == "count") {
+      int n = 0;
+      if (!x.IsScalar() || !YAML::convert<int>::decode(x, n) || n < 1 || n > kMaxHosts)
+        c.fail(path, describe(x), "must be a whole number from 1 to " + std::to_string(kMaxHosts));
+      h.count = n;
+    } else if (key == "launcher_address") {
+      h.launcher_address = host_text(x, path, c);
+    } else if (key == "placement" && x.IsSequence()) {
+      for (std::size_t i = 0; i < x.size(); ++i)
+        h.placement.push_back(host_text(x[i], path + "[" + std::to_string(i) + "]", c));
+    } else if (key == "machines" && x.IsSequence()) {
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const std::string base = path + "[" + std::to_string(i) + "]";
+        if (!x[i].IsMap() || !x[i]["address"])
+          c.fail(base, describe(x[i]), "must be {address: IP, command: PREFIX}");
+        h.machines.push_back({host_text(x[i]["address"], base + ".address", c),
+                              x[i]["command"] ? host_text(x[i]["command"], base + ".command", c) : ""});
+      }
+    } else {
+      c.fail(path, describe(x), "unknown key, or not a list (count, launcher_address, machines, placement)");
+    }
+  }
+  if (!h.machines.empty() && h.count == 0) h.count = static_cast<int>(h.machines.size());
+  if (!h.machines.empty() && static_cast<int>(h.machines.size()) != h.count)
+    c.fail("hosts.machines", std::to_string(h.machines.size()) + " machines",
+           "must list one machine per host");
+  if (!h.machines.empty() && h.launcher_address.empty())
+    c.fail("hosts.launcher_address", "(missing)",
+           "real machines need the address they reach this machine at");
+}
+
+/// The scenario's lists: trajectory.segments and faults; and the hosts section.
 bool read_list(const std::string& path, const YAML::Node& v, Scenario& s, const Context& c) {
+  if (path == "hosts") {
+    read_hosts(v, s.hosts, c);
+    return true;
+  }
   if (path != "trajectory.segments" && path != "faults") return false;
   if (!v.IsSequence()) c.fail(path, describe(v), "must be a list");
   if (path == "faults") {
@@ -178,6 +225,16 @@ void check_faults(const Scenario& s, const Context& c) {
     if (parse_agent_name(f.target, side, idx) && idx >= s.robot.per_side())
       c.fail(base + ".target", f.target,
              "no such agent (" + std::to_string(s.robot.per_side()) + " per side)");
+    int host = 0;
+    const bool host_target = parse_host_name(f.target, host);
+    if (is_host_action(f.action) != host_target)
+      c.fail(base + ".target", f.target,
+             is_host_action(f.action) ? "action " + f.action + " needs a host (h0, h1, ...)"
+                                      : "action " + f.action + " needs a process, not a host");
+    if (host_target && is_host_action(f.action) && !s.hosts.enabled())
+      c.fail(base + ".target", f.target, "a host fault needs a fleet on several hosts (--hosts N)");
+    if (host_target && s.hosts.enabled() && host >= s.hosts.count)
+      c.fail(base + ".target", f.target, "no such host (" + std::to_string(s.hosts.count) + " hosts: h0..)");
     if (f.at_s > s.duration_s)
       c.fail(base + ".at_s", model::param_value(f.at_s), "must be within [0, duration_s]");
   }
@@ -284,6 +341,18 @@ std::string to_yaml(const Scenario& s) {
     faults.push_back(m);
   }
   root["faults"] = faults;
+  if (s.hosts.enabled()) {
+    root["hosts"]["count"] = s.hosts.count;
+    if (!s.hosts.launcher_address.empty()) root["hosts"]["launcher_address"] = s.hosts.launcher_address;
+    for (const auto& m : s.hosts.machines) {
+      YAML::Node n;
+      n["address"] = m.address;
+      n["command"] = m.command;
+      n.SetStyle(YAML::EmitterStyle::Flow);
+      root["hosts"]["machines"].push_back(n);
+    }
+    for (const auto& p : s.hosts.placement) root["hosts"]["placement"].push_back(p);
+  }
   YAML::Emitter e;
   e << root;
   return std::string(e.c_str()) + "\n";
@@ -342,6 +411,18 @@ bool parse_agent_name(const std::string& n, int& side, int& index) {
     if (n[i] < '0' || n[i] > '9') return false;
   if (n.size() > 5) return false;
   side = n[0] == 'L' ? 0 : 1;
+  index = std::stoi(n.substr(1));
+  return true;
+}
+
+bool is_host_action(const std::string& a) { return a == "kill-host" || a == "partition" || a == "heal"; }
+
+std::string host_name(int index) { return "h" + std::to_string(index); }
+
+bool parse_host_name(const std::string& n, int& index) {
+  if (n.size() < 2 || n.size() > 4 || n[0] != 'h') return false;
+  for (std::size_t i = 1; i < n.size(); ++i)
+    if (n[i] < '0' || n[i] > '9') return false;
   index = std::stoi(n.substr(1));
   return true;
 }

@@ -47,9 +47,38 @@ struct ControlConfig {
 };
 
 struct FaultSpec {
-  std::string target;  ///< "L3", "R0", "group-L", "group-R", "central", "plant", "discovery"
-  std::string action;  ///< "kill" | "restart" | "pause" | "resume"
+  std::string target;  ///< "L3", "R0", "group-L", "group-R", "central", "plant", "discovery"; a host "h1"
+  std::string action;  ///< "kill" | "restart" | "pause" | "resume" (a process); "kill-host" | "partition" | "heal" (a host)
   double at_s = 0.0;   ///< simulated time, s
+};
+
+/// True for the actions whose target is a host (kill-host, partition, heal).
+bool is_host_action(const std::string& action);
+/// Parses a host name "h<index>" (h0, h1, ...).
+bool parse_host_name(const std::string& name, int& index);
+std::string host_name(int index);
+
+/// Most hosts of one fleet.
+constexpr int kMaxHosts = 64;
+
+/// One host of a fleet spread over several (deploy/fleet/hosts.hpp runs them). Without an
+/// address the launcher makes the host a network namespace of this machine; with one, the
+/// processes placed there are started through `command` (e.g. "ssh user@board1"), which must
+/// reach a machine whose MAPTR binaries and run folder are at the same paths as here.
+struct HostSpec {
+  std::string address;  ///< IPv4 address of a real machine ("" : a namespace)
+  std::string command;  ///< command prefix that starts a process there
+};
+
+/// The hosts of a run: none (every process on this machine, shared memory and loopback) or
+/// `count` hosts h0..h(count-1). Placement: "NAME=HOST" rules (NAME a process, HOST a host
+/// name); every process without a rule is placed by deploy::fleet::default_placement().
+struct HostsConfig {
+  int count = 0;
+  std::vector<HostSpec> machines;      ///< empty, or one per host
+  std::vector<std::string> placement;  ///< "L3=h2", "central=h1", ...
+  std::string launcher_address;        ///< real machines: this machine's address they reach
+  bool enabled() const { return count > 0; }
 };
 
 struct Scenario {
@@ -69,6 +98,7 @@ struct Scenario {
   ControlConfig control;
   Trajectory trajectory;
   std::vector<FaultSpec> faults;
+  HostsConfig hosts;
 
   double dt() const { return 1.0 / tick_hz; }
   long long ticks() const;

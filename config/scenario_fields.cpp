@@ -21,8 +21,8 @@ std::string name_problem(const std::string& n) {
 
 std::string target_problem(const std::string& t) {
   int side = 0, index = 0;
-  if (parse_agent_name(t, side, index)) return "";
-  return "must be an agent (L0, R3, ...), group-L, group-R, central, plant or discovery";
+  if (parse_agent_name(t, side, index) || parse_host_name(t, index)) return "";
+  return "must be an agent (L0, R3, ...), group-L, group-R, central, plant, discovery or a host (h0, h1, ...)";
 }
 
 using S = Scenario;
@@ -224,10 +224,11 @@ const Table<FaultSpec>& fault_table() {
       text<F>(
           "target", [](auto& f) -> auto& { return f.target; },
           {"group-L", "group-R", "central", "plant", "discovery"}, "process to act on", &target_problem,
-          "an agent of the robot (L0, R3, ...)"),
+          "an agent of the robot (L0, R3, ...) or a host (h0, h1, ...)"),
       text<F>(
-          "action", [](auto& f) -> auto& { return f.action; }, {"kill", "restart", "pause", "resume"},
-          "what to do to it (pause: SIGSTOP, resume: SIGCONT)"),
+          "action", [](auto& f) -> auto& { return f.action; },
+          {"kill", "restart", "pause", "resume", "kill-host", "partition", "heal"},
+          "what to do to it (pause: SIGSTOP, resume: SIGCONT; kill-host, partition, heal: to a host)"),
       real<F>(
           "at_s", [](auto& f) -> auto& { return f.at_s; }, closed(0, 1e6), "s",
           "simulated time of the action (within the run)"),

@@ -13,6 +13,7 @@ struct BenchOptions {
   std::string bin_dir, source_dir;
   int domain = 0;
   bool replot = false;  ///< scale: redraw scale.png from OUT/scale.csv, run nothing
+  int hosts = 0;        ///< scale: also run each size on this many namespace hosts (0: one host only)
 };
 
 int run_bench(const BenchOptions& o);

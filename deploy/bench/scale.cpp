@@ -34,6 +34,7 @@ constexpr int kAnswersBesideAgents = 3;
 /// The columns of scale.csv (kB, µs) and of scale.md (MB, ms).
 std::vector<report::Column> columns() {
   std::vector<report::Column> cols = {{"agents", "N", 0},
+                                      {"hosts", "hosts", 0},
                                       {"status", "status", -1, false, true},
                                       {"status_text", "status", -1, true, false},
                                       {"discovery_s", "discovery s", 2},
@@ -47,6 +48,7 @@ std::vector<report::Column> columns() {
                                       {"pss_total_kB", "", 0, false, true},
                                       {"pss_total_MB", "PSS total MB", 0, true, false},
                                       {"samples_per_tick", "DDS samples / tick", 0},
+                                      {"bridge_bytes_per_tick", "bridge bytes / tick", 0},
                                       {"tick_median_us", "", 0, false, true},
                                       {"tick_median_ms", "tick median ms", 2, true, false},
                                       {"tick_p99_us", "", 0, false, true},
@@ -104,10 +106,20 @@ config::Scenario scale_scenario(const BenchOptions& o, int n) {
   return s;
 }
 
-/// One fleet size: its row of the table.
-json measure(const BenchOptions& o, int n) {
-  const std::string run_dir = o.out + "/runs/N" + std::to_string(n);
-  const config::Scenario s = scale_scenario(o, n);
+/// Bytes the hosts sent into the bridge per tick (0 on one host).
+double bridge_bytes_per_tick(const records::Summary& sum) {
+  const double ticks = sum.number_or(records::summary_key::kTicks, 0);
+  double sent = 0;
+  for (const auto& h : sum.data().value("hosts", json::array())) sent += h.value("bytes_sent", 0.0);
+  return ticks > 0 ? sent / ticks : 0.0;
+}
+
+/// One fleet size on `hosts` hosts (1: this machine, no namespaces): its row of the table.
+json measure(const BenchOptions& o, int n, int hosts) {
+  const std::string run_dir =
+      o.out + "/runs/N" + std::to_string(n) + (hosts > 1 ? "-hosts" + std::to_string(hosts) : "");
+  config::Scenario s = scale_scenario(o, n);
+  if (hosts > 1) s.hosts.count = hosts;
   FleetMemory mem;
   FleetCost cost;
   const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
@@ -127,6 +139,7 @@ json measure(const BenchOptions& o, int n) {
       mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
   json row = {
       {"agents", n},
+      {"hosts", hosts},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},
       {"status_text", status.size() > kStatusMdChars ? status.substr(0, kStatusMdChars) + "..." : status},
@@ -141,6 +154,7 @@ json measure(const BenchOptions& o, int n) {
       {"pss_total_kB", mem.total_pss_kB},
       {"pss_total_MB", mem.total_pss_kB / kKiB},
       {"samples_per_tick", n + 4},  // one PlantTick, N AgentReply, 2 GroupStatus, 1 CentralCommand
+      {"bridge_bytes_per_tick", bridge_bytes_per_tick(sum)},
       {"tick_median_us", tick.median},
       {"tick_median_ms", tick.median / 1000.0},
       {"tick_p99_us", tick.p99},
@@ -173,18 +187,21 @@ int bench_scale(const BenchOptions& o) {
   std::ofstream csv(o.out + "/scale.csv");
   csv << t.csv_header() << std::flush;
   int worst = 0;
-  for (int n : o.agents) {
-    std::cerr << "maptr: bench scale N=" << n << " ..." << std::flush;
-    const json row = measure(o, n);
-    csv << t.csv_row(row) << std::flush;  // a later size that fails leaves the earlier rows
-    t.rows.push_back(row);
-    const std::string status = row["status_full"];
-    std::cerr << " " << status << ", discovery " << row["discovery_s"].get<double>() << " s, RTF "
-              << row["real_time_factor"].get<double>() << ", tick " << row["tick_median_us"].get<double>()
-              << " µs = " << row["x_floor"].get<double>() << " x floor (" << row["floor_median_us"].get<double>()
-              << " µs)\n";
-    if (status != "ok") worst = 1;
-  }
+  std::vector<int> host_counts = {1};
+  if (o.hosts > 1) host_counts.push_back(o.hosts);
+  for (int n : o.agents)
+    for (int hosts : host_counts) {
+      std::cerr << "maptr: bench scale N=" << n << " on " << hosts << " host(s) ..." << std::flush;
+      const json row = measure(o, n, hosts);
+      csv << t.csv_row(row) << std::flush;  // a later size that fails leaves the earlier rows
+      t.rows.push_back(row);
+      const std::string status = row["status_full"];
+      std::cerr << " " << status << ", discovery " << row["discovery_s"].get<double>() << " s, RTF "
+                << row["real_time_factor"].get<double>() << ", tick " << row["tick_median_us"].get<double>()
+                << " µs = " << row["x_floor"].get<double>() << " x floor ("
+                << row["floor_median_us"].get<double>() << " µs)\n";
+      if (status != "ok") worst = 1;
+    }
   report::write_file(o.out + "/scale.md", t.md());
   plot(o.out);
   std::cout << t.md() << "results: " << o.out << "/scale.csv, scale.md, scale.png\n";

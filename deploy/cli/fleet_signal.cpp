@@ -15,10 +15,14 @@ CLI::App* add_signal_command(CLI::App& app, const std::string& action, SignalArg
       {"kill", "SIGKILL a process of a running fleet (e.g. L3, group-R, central)"},
       {"restart", "start a killed process of a running fleet again"},
       {"pause", "SIGSTOP a process of a running fleet (the plant drops it at once)"},
-      {"resume", "SIGCONT a paused process of a running fleet (the plant expects it again)"}};
+      {"resume", "SIGCONT a paused process of a running fleet (the plant expects it again)"},
+      {"kill-host", "kill every process of a host of a running fleet and cut its link (e.g. h2)"},
+      {"partition", "cut the link of a host of a running fleet; its processes keep running"},
+      {"heal", "link a cut (or killed) host of a running fleet again"}};
   const std::string what = kWhat.at(action);
   auto* c = app.add_subcommand(action, what);
-  c->add_option("target", a.target, "process name")->required();
+  c->add_option("target", a.target, action == "kill" || action == "restart" ? "process name" : "host (h0, h1, ...)")
+      ->required();
   c->add_option("--run", a.run_dir, "run folder (default: the newest running one under runs/)");
   return c;
 }

@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|level2|experiment|bench|fuzz|kill|restart|pause|resume|soak|top|replay|plot`).
+// dispatches (`maptr run|level2|experiment|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|top|replay|plot`).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   ExperimentArgs experiment_args;
   BenchArgs bench_args;
   FuzzArgs fuzz_args;
-  SignalArgs kill_args, restart_args, pause_args, resume_args;
+  SignalArgs kill_args, restart_args, pause_args, resume_args, kill_host_args, partition_args, heal_args;
   SoakArgs soak_args;
   TopArgs top_args;
   auto* run = add_run_command(app, run_args);
@@ -42,6 +42,9 @@ int main(int argc, char** argv) {
   auto* pause = add_signal_command(app, "pause", pause_args);
   auto* resume = add_signal_command(app, "resume", resume_args);
   auto* soak = add_soak_command(app, soak_args);
+  auto* kill_host = add_signal_command(app, "kill-host", kill_host_args);
+  auto* partition = add_signal_command(app, "partition", partition_args);
+  auto* heal = add_signal_command(app, "heal", heal_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -65,6 +68,9 @@ int main(int argc, char** argv) {
     if (pause->parsed()) return cmd_signal("pause", pause_args);
     if (resume->parsed()) return cmd_signal("resume", resume_args);
     if (soak->parsed()) return cmd_soak(soak_args, bin_dir(argv[0]));
+    if (kill_host->parsed()) return cmd_signal("kill-host", kill_host_args);
+    if (partition->parsed()) return cmd_signal("partition", partition_args);
+    if (heal->parsed()) return cmd_signal("heal", heal_args);
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 1;

@@ -10,6 +10,7 @@
 
 #include "deploy/cli/paths.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
+#include "deploy/fleet/hosts.hpp"
 #include "deploy/fleet/launcher.hpp"
 #include "model/params.hpp"
 
@@ -22,6 +23,7 @@ namespace {
 
 /// Exit codes of `maptr run`.
 constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitDegraded = 3;
+
 
 void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::string& action) {
   for (const auto& spec : specs) {
@@ -52,6 +54,14 @@ void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::s
 Scenario checked_scenario(const RunArgs& a) {
   Scenario s = scenario_from(a);
   s.validate();
+  if (s.hosts.enabled() && s.hosts.machines.empty())
+    if (const std::string why = fleet::hosts_root_problem(); !why.empty()) throw ScenarioError(why);
+  if (s.hosts.enabled()) {
+    std::vector<std::string> names = {"plant", "central", "group-L", "group-R"};
+    for (int side = 0; side < 2; ++side)
+      for (int j = 0; j < s.robot.per_side(); ++j) names.push_back(config::agent_name(side, j));
+    fleet::place_processes(names, s.hosts.count, s.hosts.placement);  // throws on a bad rule
+  }
   for (const auto& name : a.external) {
     int side = 0, idx = 0;
     if (!config::parse_agent_name(name, side, idx) || idx >= s.robot.per_side())
@@ -102,6 +112,12 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--record", a.record, "what run.mcap records: all (default), plant or none");
   run->add_flag("--secure", a.secure,
                 "DDS Security: a private CA, one certificate and permissions per process, encrypted data");
+  run->add_option("--hosts", a.hosts, "run the fleet on N hosts (network namespaces; needs root)")
+      ->check(CLI::Range(1, config::kMaxHosts));
+  run->add_option("--place", a.placement, "put a process on a host, e.g. central=h1 (repeatable)");
+  run->add_option("--kill-host", a.kill_hosts, "kill every process of a host and cut its link, e.g. h2@20");
+  run->add_option("--partition", a.partitions, "cut a host's link at a simulated time, e.g. h2@20");
+  run->add_option("--heal", a.heals, "link a cut host again, e.g. h2@30");
   run->add_flag("--quiet", a.quiet, "no progress lines");
   return run;
 }
@@ -126,11 +142,16 @@ Scenario scenario_from(const RunArgs& a) {
   // A longer --duration than the trajectory: the last segment goes on.
   if (!a.duration.empty() && s.trajectory.total_duration() < s.duration_s)
     s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
-  const std::size_t from_file = s.faults.size();
+  if (a.hosts > 0) s.hosts.count = a.hosts;
+  for (const auto& p : a.placement) s.hosts.placement.push_back(p);
+    const std::size_t from_file = s.faults.size();
   add_faults(s, a.kills, "kill");
   add_faults(s, a.restarts, "restart");
   add_faults(s, a.pauses, "pause");
   add_faults(s, a.resumes, "resume");
+  add_faults(s, a.kill_hosts, "kill-host");
+  add_faults(s, a.partitions, "partition");
+  add_faults(s, a.heals, "heal");
   if (const auto i = config::unmatched_resume(s.faults); i && *i >= from_file) {
     const config::FaultSpec& f = s.faults[*i];
     std::ostringstream at;

@@ -18,6 +18,8 @@ struct RunArgs {
   bool realtime = false, quiet = false, secure = false;
   int domain = -1;
   std::vector<std::string> kills, restarts, pauses, resumes, external;
+  std::vector<std::string> kill_hosts, partitions, heals, placement;
+  int hosts = 0;  ///< --hosts N (0: the scenario's)
   long long chaos = -1;
   std::string transport = "auto";
 };

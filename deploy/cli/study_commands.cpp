@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "deploy/cli/paths.hpp"
+#include "deploy/fleet/hosts.hpp"
 
 namespace maptr::deploy::cli {
 
@@ -34,6 +35,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
   c->add_option("--out", a.o.out, "output folder (default runs/<date>-bench-<what>)");
   c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
       ->check(CLI::Range(0, kMaxDomain));
+  c->add_option("--hosts", a.o.hosts, "scale: also run each size on N hosts (namespaces; needs root)")
+      ->check(CLI::Range(2, 64));
   c->add_flag("--replot", a.o.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
   return c;
 }
@@ -64,6 +67,11 @@ int cmd_bench(BenchArgs a, const std::string& bin_dir) {
   } else if (a.o.what == "tick") {
     a.o.agents = {kTickBenchAgents};
   }
+  if (a.o.hosts > 1)
+    if (const std::string why = fleet::hosts_root_problem(); !why.empty()) {
+      std::cerr << "maptr: bench " << why << "\n";
+      return 2;
+    }
   if (a.o.out.empty()) a.o.out = unique_run_dir("runs", "bench-" + a.o.what);
   a.o.domain = resolve_domain(a.domain);
   return run_bench(a.o);

@@ -1,5 +1,7 @@
 #include "deploy/fleet/children.hpp"
 
+#include "deploy/fleet/hosts.hpp"
+
 #include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -41,18 +43,22 @@ void spawn(Child& c, const std::string& run_dir, const Environment& env, int par
   // Everything the child needs is prepared before fork(): between fork and exec the child of
   // a multi-threaded process may only make async-signal-safe calls (no allocation).
   const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
+  Environment own = env;
+  for (const auto& [k, v] : c.host_env) own[k] = v;
+  own["MAPTR_PARTICIPANT_ID"] = std::to_string(participant_id);
   std::vector<std::string> env_store;
   for (char** e = environ; *e; ++e) {
     const std::string kv = *e;
-    if (!env.count(kv.substr(0, kv.find('=')))) env_store.push_back(kv);
+    if (!own.count(kv.substr(0, kv.find('=')))) env_store.push_back(kv);
   }
-  for (const auto& [k, v] : env) env_store.push_back(k + "=" + v);
-  env_store.push_back("MAPTR_PARTICIPANT_ID=" + std::to_string(participant_id));
+  for (const auto& [k, v] : own) env_store.push_back(k + "=" + v);
+  std::vector<std::string> command = {c.binary};
+  command.insert(command.end(), c.args.begin(), c.args.end());
+  if (!c.prefix.empty()) command = host_argv(c.prefix, own, c.binary, c.args);
   std::vector<char*> envp, argv;
   for (auto& e : env_store) envp.push_back(e.data());
   envp.push_back(nullptr);
-  argv.push_back(const_cast<char*>(c.binary.c_str()));
-  for (auto& a : c.args) argv.push_back(const_cast<char*>(a.c_str()));
+  for (auto& a : command) argv.push_back(a.data());
   argv.push_back(nullptr);
   const pid_t parent = getpid();
   const pid_t pid = fork();
@@ -67,7 +73,7 @@ void spawn(Child& c, const std::string& run_dir, const Environment& env, int par
       dup2(fd, 2);
       close(fd);
     }
-    execve(argv[0], argv.data(), envp.data());
+    execvpe(argv[0], argv.data(), envp.data());
     _exit(127);
   }
   c.pid = pid;

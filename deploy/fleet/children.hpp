@@ -34,6 +34,9 @@ struct Child {
   int starts = 0;
   int base_id = 0;              ///< DDS participant id of its first start
   bool awaiting_ready = false;  ///< restarted: MEMBER_STARTED goes out once it reports ready
+  int host = -1;                ///< fleet on several hosts: the host it runs on (-1: this machine)
+  std::vector<std::string> prefix;  ///< command prefix that starts it on its host ("": directly)
+  std::map<std::string, std::string> host_env;  ///< environment its host adds (MAPTR_INTERFACE)
 };
 
 /// How a reaped process ended.
@@ -53,7 +56,8 @@ bool ended_cleanly(const Child& c);
 
 using Environment = std::map<std::string, std::string>;
 
-/// Starts c (again): its environment is the launcher's with env and MAPTR_PARTICIPANT_ID.
+/// Starts c (again): its environment is the launcher's with env, c.host_env and
+/// MAPTR_PARTICIPANT_ID; with a command prefix (a host), through it (deploy/fleet/hosts.hpp).
 /// Throws std::runtime_error if fork fails.
 void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id);
 

@@ -52,6 +52,9 @@ struct FleetConfig {
   /// Messages a shared-memory listening port holds: room for every answer of a tick, several
   /// times over (the plant's port takes one from each agent, group and central per tick).
   int shm_port_queue(int agents) const { return std::max(512, 4 * (agents + 8)); }
+  /// A fleet on several hosts: how long a process cut off from the plant (a partition) waits
+  /// for it to come back before it ends, s.
+  double host_plant_loss_s = 120.0;
   /// Period of the progress line, s.
   double progress_period_s = 1.0;
   /// Poll periods of the discovery loop, the run loop and a fault gate's wait.

@@ -1,5 +1,7 @@
 #include "deploy/fleet/control_fifo.hpp"
 
+#include "config/scenario.hpp"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -19,7 +21,8 @@ std::vector<Command> CommandLines::feed(std::string_view bytes) {
     buf_.erase(0, nl + 1);
     Command c;
     line >> c.action >> c.target;
-    c.valid = c.action == "kill" || c.action == "restart" || c.action == "pause" || c.action == "resume";
+    c.valid = c.action == "kill" || c.action == "restart" || c.action == "pause" || c.action == "resume" ||
+              config::is_host_action(c.action);
     out.push_back(c);
   }
   return out;

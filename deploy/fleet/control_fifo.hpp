@@ -1,7 +1,8 @@
 #pragma once
 // The launcher's control FIFO, RUN_DIR/control: another terminal writes lines
 // "kill NAME", "restart NAME", "pause NAME" or "resume NAME" (`maptr kill|restart|pause|resume
-// NAME`), the launcher applies them at once.
+// NAME`), or "kill-host|partition|heal hN" (`maptr kill-host|partition|heal hN`); the launcher
+// applies them at once.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -10,7 +11,7 @@ namespace maptr::deploy::fleet {
 
 struct Command {
   std::string action, target;
-  bool valid = false;  ///< the action is "kill", "restart", "pause" or "resume"
+  bool valid = false;  ///< the action is kill, restart, pause, resume, kill-host, partition or heal
 };
 
 /// Splits a byte stream into commands, one per complete line; a partial line waits for the

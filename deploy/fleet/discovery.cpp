@@ -1,5 +1,7 @@
 #include "deploy/fleet/discovery.hpp"
 
+#include "comm/dds.hpp"
+
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -9,6 +11,8 @@
 #include <cerrno>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -16,6 +20,8 @@ namespace maptr::deploy::fleet {
 
 namespace {
 constexpr std::chrono::milliseconds kListenPoll{10};
+/// Discovery port of the servers of a fleet on several hosts: this plus the domain id.
+constexpr int kHostDiscoveryPortBase = 11811;
 
 sockaddr_in loopback(int port) {
   sockaddr_in a{};
@@ -48,6 +54,45 @@ bool udp_port_bound(int port) {
   return taken;
 }
 
+bool udp_port_bound_by(pid_t pid, int port) {
+  // /proc/PID/net/udp lists the sockets of PID's network namespace: "sl local_address ..." with
+  // the address as HEXIP:HEXPORT.
+  std::ifstream f("/proc/" + std::to_string(pid) + "/net/udp");
+  std::string line;
+  std::getline(f, line);
+  while (std::getline(f, line)) {
+    std::istringstream in(line);
+    std::string slot, local;
+    in >> slot >> local;
+    const auto colon = local.find(':');
+    if (colon != std::string::npos && std::stoi(local.substr(colon + 1), nullptr, 16) == port) return true;
+  }
+  return false;
+}
+
+int host_discovery_port(int domain) { return kHostDiscoveryPortBase + domain; }
+
+DiscoveryServer::DiscoveryServer(const std::string& binary, const std::string& run_dir, int domain,
+                                 double listen_s, double restart_delay_s, const std::string& servers, int index,
+                                 const Child& host_like, bool netns)
+    : run_dir_(run_dir),
+      port_(host_discovery_port(domain)),
+      listen_s_(listen_s),
+      restart_delay_s_(restart_delay_s),
+      index_(index),
+      count_(static_cast<int>(comm::split_servers(servers).size())),
+      netns_(netns),
+      remote_(!netns) {
+  address_ = comm::split_servers(servers).at(static_cast<std::size_t>(index));
+  c_.name = "discovery-h" + std::to_string(index);
+  c_.binary = binary;
+  c_.args = {"--address", servers, "--index", std::to_string(index), "--domain", std::to_string(domain)};
+  c_.host = host_like.host;
+  c_.prefix = host_like.prefix;
+  c_.host_env = host_like.host_env;
+  if (!std::filesystem::exists(binary)) throw std::runtime_error("missing process binary " + binary);
+}
+
 DiscoveryServer::DiscoveryServer(const std::string& binary, const std::string& run_dir, int domain,
                                  double listen_s, double restart_delay_s)
     : run_dir_(run_dir), port_(free_udp_port()), listen_s_(listen_s), restart_delay_s_(restart_delay_s) {
@@ -63,10 +108,13 @@ DiscoveryServer::~DiscoveryServer() {
 }
 
 bool DiscoveryServer::start(const Environment& env, ParticipantIds& ids) {
-  spawn(c_, run_dir_, env, ids.take(0, restarts_));  // fresh ports after a restart
+  // Fresh ports after a restart; each server of a fleet on several hosts its own id (their
+  // shared-memory ports share /dev/shm).
+  spawn(c_, run_dir_, env, ids.take(0, index_ + count_ * restarts_));
+  if (remote_) return true;  // a real machine: the clients retry until it answers
   const auto t0 = Clock::now();
   while (std::chrono::duration<double>(Clock::now() - t0).count() < listen_s_) {
-    if (udp_port_bound(port_)) return true;
+    if (netns_ ? udp_port_bound_by(c_.pid, port_) : udp_port_bound(port_)) return true;
     int st = 0;
     if (waitpid(c_.pid, &st, WNOHANG) == c_.pid) {
       c_.running = false;
@@ -87,15 +135,27 @@ void DiscoveryServer::start_or_throw(const Environment& env, ParticipantIds& ids
 bool DiscoveryServer::on_exit(const Exit& e, bool expected) {
   if (e.pid != c_.pid || !c_.running) return false;
   c_.running = false;
-  if (!expected) {
+  if (!expected && !held_) {
     ++restarts_;
     restart_at_ = Clock::now() + std::chrono::milliseconds(static_cast<long>(1000 * restart_delay_s_));
   }
   return true;
 }
 
+void DiscoveryServer::hold() {
+  held_ = true;
+  restart_at_.reset();
+}
+
+void DiscoveryServer::release() {
+  held_ = false;
+  if (c_.running) return;
+  ++restarts_;
+  restart_at_ = Clock::now();
+}
+
 bool DiscoveryServer::restart_if_due(const Environment& env, ParticipantIds& ids, bool& started) {
-  if (!restart_at_ || Clock::now() < *restart_at_) return false;
+  if (held_ || !restart_at_ || Clock::now() < *restart_at_) return false;
   restart_at_.reset();
   started = start(env, ids);
   return true;

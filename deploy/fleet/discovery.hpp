@@ -17,12 +17,22 @@ namespace maptr::deploy::fleet {
 int free_udp_port();
 /// True once some process has bound UDP port `port` on 127.0.0.1.
 bool udp_port_bound(int port);
+/// True once a UDP socket on `port` is bound in the network namespace of process `pid`.
+bool udp_port_bound_by(pid_t pid, int port);
+/// The discovery port of every server of a fleet on several hosts, on DDS domain `domain`.
+int host_discovery_port(int domain);
 
 class DiscoveryServer {
  public:
   /// binary: maptr_discovery; listen_s: how long start() waits for it to listen, s.
   DiscoveryServer(const std::string& binary, const std::string& run_dir, int domain, double listen_s,
                   double restart_delay_s);
+  /// Server `index` of the comma-separated list `servers` (a fleet on several hosts: one per
+  /// host), started through the host's command prefix with its environment; `netns`: the
+  /// host's namespace ("" for a real machine, whose listening is not checked).
+  DiscoveryServer(const std::string& binary, const std::string& run_dir, int domain, double listen_s,
+                  double restart_delay_s, const std::string& servers, int index, const Child& host_like,
+                  bool netns);
   ~DiscoveryServer();  ///< kills a server still running (a launch that failed half-way)
   DiscoveryServer(const DiscoveryServer&) = delete;
   DiscoveryServer& operator=(const DiscoveryServer&) = delete;
@@ -43,6 +53,10 @@ class DiscoveryServer {
   bool restart_if_due(const Environment& env, ParticipantIds& ids, bool& started);
   /// Kills it (a fault).
   void kill_now();
+  /// Its host is lost: no restart until release().
+  void hold();
+  /// Its host is back: a restart is due now if it does not run.
+  void release();
   /// Ends it: SIGTERM, then SIGKILL after term_s.
   void stop(double term_s);
 
@@ -53,6 +67,8 @@ class DiscoveryServer {
   int port_;
   double listen_s_, restart_delay_s_;
   int restarts_ = 0;
+  int index_ = 0, count_ = 1;  ///< its index in the fleet's list of servers, and their number
+  bool netns_ = false, remote_ = false, held_ = false;
   std::optional<Clock::time_point> restart_at_;
 };
 

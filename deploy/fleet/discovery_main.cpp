@@ -17,7 +17,11 @@
 int main(int argc, char** argv) {
   CLI::App app{"MAPTR discovery server (started and stopped by `maptr run`)"};
   maptr::comm::DdsOptions o = maptr::comm::options_from_env();
-  app.add_option("--address", o.discovery_server, "HOST:PORT to listen on (default: MAPTR_DISCOVERY_SERVER)");
+  app.add_option("--address", o.discovery_server,
+                 "HOST:PORT to listen on, or the fleet's list HOST:PORT,HOST:PORT,... (default: "
+                 "MAPTR_DISCOVERY_SERVER)");
+  app.add_option("--index", o.server_index,
+                 "which entry of the list this server is (its GUID prefix; it connects to the others)");
   app.add_option("--domain", o.domain, "DDS domain (default: MAPTR_DOMAIN)");
   CLI11_PARSE(app, argc, argv);
   if (o.discovery_server.empty()) {
@@ -28,8 +32,11 @@ int main(int argc, char** argv) {
   o.is_server = true;  // transports as for the fleet (MAPTR_TRANSPORT)
   auto& stop = maptr::comm::stop_flag();
   try {
+    const auto servers = maptr::comm::split_servers(o.discovery_server);
+    const std::string own =
+        o.server_index >= 0 && o.server_index < static_cast<int>(servers.size()) ? servers[o.server_index] : "?";
     maptr::comm::Participant p("discovery", o);
-    std::fprintf(stderr, "maptr_discovery: serving domain %d on %s\n", o.domain, o.discovery_server.c_str());
+    std::fprintf(stderr, "maptr_discovery: serving domain %d on %s\n", o.domain, own.c_str());
     while (!stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "maptr_discovery: %s\n", e.what());

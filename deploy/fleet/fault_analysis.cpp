@@ -41,14 +41,20 @@ void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, cons
     auto& f = failures[i];
     const double at = f.value("at_s", 0.0);
     const std::string target = f.value("target", "");
-    // A restart or a resume is detected when the target answers again; a kill or a pause when
-    // the plant drops it.
-    const bool restart = f.value("action", "") == "restart" || f.value("action", "") == "resume";
+    // A restart, a resume or a heal is detected when the target answers again; a kill, a pause or
+    // a partition when the plant drops it.
+    const std::string action = f.value("action", "");
+    const bool restart = action == "restart" || action == "resume" || action == "heal";
+    // A host fault is detected by the first event of any process on that host.
+    const nlohmann::json on_host = f.value("processes", nlohmann::json::array());
+    auto concerns = [&](const std::string& name) {
+      return name == target || std::find(on_host.begin(), on_host.end(), name) != on_host.end();
+    };
     // Detection: the first membership event of the target at or after the fault.
     f["detected_s"] = nullptr;
     f["detect_wall_ms"] = nullptr;
     for (const auto& e : events) {
-      if (e.value("name", "") != target || e.value("t_s", -1.0) < at - 1e-9) continue;
+      if (!concerns(e.value("name", "")) || e.value("t_s", -1.0) < at - 1e-9) continue;
       if ((e.value("event", "") == "rejoined") != restart) continue;
       f["detected_s"] = e.value("t_s", 0.0);
       if (f.contains("wall_ms")) f["detect_wall_ms"] = e.value("wall_ms", 0.0) - f.value("wall_ms", 0.0);

@@ -54,6 +54,14 @@ std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scena
       if (target != fleet::kDiscoveryTarget) out.push_back({target, "restart", again});
     }
   }
+  // On several hosts, also one partition of a host other than h0 (the plant's by default), healed.
+  if (s.hosts.count >= 2) {
+    std::uniform_int_distribution<int> host(1, s.hosts.count - 1);
+    const std::string h = config::host_name(host(rng));
+    const double at = std::round(when(rng) * 100.0) / 100.0;
+    out.push_back({h, "partition", at});
+    out.push_back({h, "heal", std::min(s.duration_s, std::round((at + back(rng)) * 100.0) / 100.0)});
+  }
   return out;
 }
 

@@ -22,7 +22,8 @@ struct ChaosOptions {
 
 /// Outages of agents and controllers (never the plant) at random simulated times, the same for
 /// the same seed, scenario and options: a kill restarted 2-8 s later, or a pause resumed 2-8 s
-/// later; the discovery server is only killed (the launcher restarts it).
+/// later; the discovery server is only killed (the launcher restarts it). On several hosts, one
+/// host other than h0 is also cut off and healed 2-8 s later.
 std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s,
                                               const ChaosOptions& o);
 /// The schedule of `--chaos SEED`: `faults` outages, a third of them pauses.
@@ -64,6 +65,8 @@ class FaultSchedule {
   /// origin says who asked for it ("scheduled", "chaos", "command").
   void record(const config::FaultSpec& f, double at_s, double wall_ms, const FaultAction& a,
               const std::string& origin = "scheduled");
+  /// Adds key = value to the last record.
+  void annotate_last(const std::string& key, const nlohmann::json& value) { records_.back()[key] = value; }
   /// The run ended: every fault not yet due is recorded as skipped.
   void close();
 

@@ -53,13 +53,18 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   // Restarts cycle through as many participant-id windows as stay below port 65536.
   if ((comm::rtps_max_participant_id(o.domain) + 1) / fleet_participants(agents) < 1)
     throw std::runtime_error(domain_problem(o.domain, agents));
-  if (!o.secure)
-    ds_ = std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
-                                            cfg.discovery_listen_s,
-                                            cfg.discovery_restart_leases * cfg.lease_s(agents));
   // Participant ids: 0 the discovery server, 1 the launcher, then the fleet.
   dds_.domain = o.domain;
-  if (ds_) dds_.discovery_server = ds_->address();
+  if (o.secure) {
+    // a secure domain has no discovery server (simple discovery)
+  } else if (sc_.hosts.enabled()) {
+    setup_hosts();  // a server per host; the launcher on the hosts' network
+  } else {
+    ds_.push_back(std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
+                                                    cfg.discovery_listen_s,
+                                                    cfg.discovery_restart_leases * cfg.lease_s(agents)));
+    dds_.discovery_server = ds_.front()->address();
+  }
   dds_.participant_id = comm::kLauncherParticipantId;
   // The fleet id makes every participant's GUID prefix say which process of this fleet it is
   // (comm/fleet_guid.hpp): followers take ticks only from the plant's writer.
@@ -76,6 +81,9 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   }
   dds_.lease_s = cfg.lease_s(agents);
   rec_.transport = o.transport != "auto" ? o.transport : (agents <= cfg.shm_max_agents ? "shm" : "udp");
+  // Between hosts data goes over UDP: every participant then announces both kinds of locator
+  // (a peer on the same host is reached over shared memory, one on another host over UDP).
+  if (sc_.hosts.enabled() && rec_.transport == "shm") rec_.transport = "shm+udp";
   rec_.chaos_seed = o.chaos_seed;
   dds_.shm = rec_.transport != "udp";
   dds_.shm_data_only = rec_.transport == "shm";
@@ -85,10 +93,12 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
           {"MAPTR_DOMAIN", std::to_string(o.domain)},
           {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)},
           {"MAPTR_SHM_PORT_QUEUE", std::to_string(cfg.shm_port_queue(agents))}};
+  if (on_hosts()) env_["MAPTR_PLANT_LOSS_S"] = std::to_string(cfg.host_plant_loss_s);
   make_children();
-  if (ds_) {
+  if (on_hosts()) place_children();
+  if (!ds_.empty()) {
     env_["MAPTR_DISCOVERY_SERVER"] = dds_.discovery_server;
-    ds_->start_or_throw(env_, ids_);
+    for (auto& ds : ds_) ds->start_or_throw(env_, ids_);
   } else {
     make_secure_domain();
   }
@@ -201,8 +211,8 @@ void Fleet::write_fleet() const {
   // The fleet's coordinates, for tools and for processes started by hand.
   nlohmann::json fleet = {{"launcher_pid", getpid()},
                           {"domain", o_.domain},
-                          {"discovery_server", ds_ ? nlohmann::json(ds_->address()) : nlohmann::json()},
-                          {"discovery_server_pid", ds_ ? nlohmann::json(ds_->pid()) : nlohmann::json()},
+                          {"discovery_server", dds_.discovery_server},
+                          {"discovery_server_pid", ds_.empty() ? nlohmann::json() : nlohmann::json(ds_.front()->pid())},
                           {"secure", secure()},
                           {"security_dir", dds_.security_dir},
                           {"lease_s", dds_.lease_s},
@@ -210,9 +220,11 @@ void Fleet::write_fleet() const {
                           {"config", cfg_path_},
                           {"run_dir", o_.run_dir},
                           {"bin_dir", o_.bin_dir}};
-  for (const auto& c : kids_)
+  for (const auto& c : kids_) {
     fleet["processes"].push_back(
         {{"name", c.name}, {"pid", c.pid}, {"external", c.external}, {"participant_id", c.base_id}});
+    if (c.host >= 0) fleet["processes"].back()["host"] = config::host_name(c.host);
+  }
   std::ofstream(o_.run_dir + "/fleet.json.tmp") << fleet.dump(2) << "\n";
   // Readers never see half a file.
   std::filesystem::rename(o_.run_dir + "/fleet.json.tmp", o_.run_dir + "/fleet.json");
@@ -246,7 +258,7 @@ void Fleet::start_processes() {
   print_external_commands();
   fifo_ = std::make_unique<ControlFifo>(o_.run_dir);
   log_.info("launching {} processes in waves (discovery {})", kids_.size(),
-            ds_ ? "server " + ds_->address() : std::string("simple, secure domain"));
+            ds_.empty() ? std::string("simple, secure domain") : "server " + dds_.discovery_server);
   if (o_.progress)
     std::fprintf(stderr, "maptr: launched %zu processes (%d agents, 2 groups, central, plant)\n",
                  kids_.size(), sc_.robot.agents);
@@ -354,12 +366,15 @@ void Fleet::end() {
   stop_recorder();
   fifo_.reset();
   participant_.reset();
-  if (ds_) ds_->stop(cfg_.discovery_term_s);  // the discovery server goes last
-  clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_id_), ds_ ? ds_->port() : 0, log_);
+  for (auto& ds : ds_) ds->stop(cfg_.discovery_term_s);  // the discovery servers go last
+  if (on_hosts()) record_hosts();
+  net_.reset();  // the namespaces, veths and bridge
+  clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_id_), ds_.empty() ? 0 : ds_.front()->port(), log_);
 }
 
 nlohmann::json Fleet::summary() {
-  rec_.discovery_restarts = ds_ ? ds_->restarts() : 0;
+  rec_.discovery_restarts = 0;
+  for (const auto& ds : ds_) rec_.discovery_restarts += ds->restarts();
   rec_.last_tick = clock_.state();
   rec_.failures = schedule_.records();
   rec_.launcher_rejected = clock_.rejected() + static_cast<long>(ready_.undecodable() + ticks_.undecodable() +

@@ -19,6 +19,7 @@
 #include "deploy/fleet/control_fifo.hpp"
 #include "deploy/fleet/discovery.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
+#include "deploy/fleet/hosts.hpp"
 #include "deploy/fleet/launcher.hpp"
 #include "deploy/fleet/plant_clock.hpp"
 #include "deploy/fleet/summary.hpp"
@@ -78,6 +79,13 @@ class Fleet {
   void print_progress();
   std::string not_ready() const;
   Child* find(const std::string& name);
+  // A fleet on several hosts (fleet_hosts.cpp).
+  void setup_hosts();
+  void place_children();
+  std::vector<std::string> apply_host_fault(const config::FaultSpec& f, double at_s);
+  void move_off_lost_host(Child& c);
+  void record_hosts();
+  bool on_hosts() const { return !hosts_.empty(); }
   double since(Clock::time_point t0) const;
 
   const LaunchOptions& o_;
@@ -89,7 +97,9 @@ class Fleet {
   RunRecord rec_;
   Environment env_;
   ParticipantIds ids_;
-  std::unique_ptr<DiscoveryServer> ds_;  ///< none on a secure domain (simple discovery)
+  std::vector<std::unique_ptr<DiscoveryServer>> ds_;  ///< one, one per host, or none (a secure domain)
+  std::unique_ptr<NamespaceNet> net_;                 ///< namespace hosts on this machine
+  std::vector<Host> hosts_;                           ///< empty: every process on this machine
   comm::Signal signal_;
   comm::Inbox<msg::NodeReady> ready_{signal_};
   comm::Inbox<msg::PlantTick> ticks_{signal_, comm::Wake::kNever};  // polled: no wake-up per tick

@@ -47,23 +47,24 @@ void Fleet::publish_member(const Child& c, msg::MemberEvent kind) {
 }
 
 void Fleet::reap(bool expected) {
-  bool started = false;
-  if (!expected && ds_ && ds_->restart_if_due(env_, ids_, started)) {
+  for (auto& ds : ds_) {
+    bool started = false;
+    if (expected || !ds->restart_if_due(env_, ids_, started)) continue;
     if (started)
-      log_.info("the discovery server runs again (pid {})", ds_->pid());
+      log_.info("the discovery server {} runs again (pid {})", ds->address(), ds->pid());
     else
-      log_.error("the discovery server did not start again");
+      log_.error("the discovery server {} did not start again", ds->address());
   }
   while (const auto e = reap_one()) on_exit(*e, expected);
 }
 
 void Fleet::on_exit(const Exit& e, bool expected) {
-  if (ds_ && ds_->on_exit(e, expected)) {
+  for (auto& ds : ds_) {
+    if (!ds->on_exit(e, expected)) continue;
     ds_paused_ = false;
     // Established matches survive; the restarted server lets the clients re-register.
     if (!expected)
-      log_.warn("the discovery server (pid {}) died: exit {} signal {}; starting it again", e.pid,
-                e.exit_code, e.signal);
+      log_.warn("the discovery server (pid {}) died: exit {} signal {}", e.pid, e.exit_code, e.signal);
     return;
   }
   Child* c = nullptr;
@@ -95,24 +96,25 @@ void Fleet::apply_fault(const config::FaultSpec& f, double at_s, const std::stri
   const bool discovery = f.target == kDiscoveryTarget;
   Child* c = discovery ? nullptr : find(f.target);
   TargetState s;
-  if (discovery && ds_) s = {true, false, ds_->running(), ds_paused_};
+  if (discovery && !ds_.empty()) s = {true, false, ds_->running(), ds_paused_};
   if (c) s = {true, c->external, c->running, c->paused};
   const FaultAction a = decide_fault(f, s);
-  const pid_t pid = discovery ? (ds_ ? ds_->pid() : -1) : (c ? c->pid : -1);
+  const pid_t pid = discovery ? (ds_.empty() ? -1 : ds_.front()->pid()) : (c ? c->pid : -1);
   const std::string who = discovery ? std::string("the discovery server") : f.target;
   switch (a.kind) {
     case FaultAction::kKill:
       if (discovery) {
-        if (!ds_) break;
+        if (ds_.empty()) break;
         kill(pid, SIGCONT);  // a stopped server would not end on SIGTERM
         ds_paused_ = false;
-        ds_->kill_now();
+        ds_.front()->kill_now();
       } else {
         kill(pid, SIGKILL);
       }
       log_.warn("fault: killed {} (pid {}) at t={:.2f} s", who, pid, at_s);
       break;
     case FaultAction::kRestart:
+      if (on_hosts()) move_off_lost_host(*c);
       spawn_child(*c);
       c->awaiting_ready = true;
       log_.warn("fault: restarted {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
@@ -156,6 +158,10 @@ void Fleet::open_gate(const msg::FaultGate& g) {
   std::vector<std::string> killed;
   for (const auto& f : schedule_.due(g.t())) {
     if (f.action == "kill") killed.push_back(f.target);
+    if (config::is_host_action(f.action)) {
+      for (const auto& k : apply_host_fault(f, g.t())) killed.push_back(k);
+      continue;
+    }
     apply_fault(f, g.t(), o_.chaos_seed >= 0 ? "chaos" : "scheduled");
   }
   const auto t0 = Clock::now();
@@ -197,7 +203,11 @@ void Fleet::take_commands() {
       continue;
     }
     log_.info("command: {} {}", c.action, c.target);
-    apply_fault(config::FaultSpec{c.target, c.action, clock_.state().t}, clock_.state().t, "command");
+    const config::FaultSpec f{c.target, c.action, clock_.state().t};
+    if (config::is_host_action(c.action))
+      apply_host_fault(f, clock_.state().t);
+    else
+      apply_fault(f, clock_.state().t, "command");
   }
 }
 

@@ -126,6 +126,8 @@ nlohmann::json processes_json(const std::vector<Child>& kids) {
                      {"max_rss_kB", c.max_rss_kB},
                      {"starts", c.starts},
                      {"external", c.external}});
+  for (std::size_t i = 0; i < kids.size(); ++i)
+    if (kids[i].host >= 0) procs[i]["host"] = config::host_name(kids[i].host);
   return procs;
 }
 
@@ -157,6 +159,7 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["rejected_samples"] = rejected;
   s["level2"] = level2_stats(run_dir);
   s["processes"] = processes_json(kids);
+  if (!r.hosts.is_null()) s["hosts"] = r.hosts;
   const std::string trace = run_dir + "/trace.csv";
   s["trace_sha256"] = std::filesystem::exists(trace) ? sha256_of(trace) : "";
   s["status"] = kids.empty() ? r.status : final_status(r.status, plant, kids.front());

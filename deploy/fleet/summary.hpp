@@ -24,6 +24,7 @@ struct RunRecord {
   PlantState last_tick;                               ///< the plant's last tick the launcher saw
   nlohmann::json failures = nlohmann::json::array();  ///< the fault records
   long launcher_rejected = 0;  ///< ticks and fault gates the launcher dropped (not from the plant)
+  nlohmann::json hosts;        ///< a fleet on several hosts: its hosts (else null)
 };
 
 /// The run's status: the launcher's if it aborted, else the plant's ("unknown" without one),

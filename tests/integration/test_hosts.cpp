@@ -1,0 +1,196 @@
+// A fleet on several hosts (ctest label `hosts`): each host a network namespace of this machine.
+// Needs root; without it every test is skipped with the reason.
+#include <gtest/gtest.h>
+#include <pwd.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <set>
+
+#include "tests/integration/fleet_runner.hpp"
+
+using namespace maptr::testing;
+
+namespace {
+
+constexpr const char* kNeedsRoot = "a fleet on several hosts makes network namespaces and needs root";
+
+/// True while anything of the run whose launcher had this pid is left: a namespace, its lock,
+/// its bridge.
+bool network_left(pid_t launcher) {
+  const std::string tag = std::to_string(launcher);
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/run/netns", ec))
+    if (e.path().filename().string().rfind("maptr-" + tag + "-", 0) == 0) return true;
+  return std::filesystem::exists("/sys/class/net/mbr" + tag) ||
+         std::filesystem::exists("/run/maptr-hosts/" + tag + ".lock");
+}
+
+/// Removes what a run left (only after a failed test; a run cleans up after itself).
+void remove_network(pid_t launcher) {
+  const std::string tag = std::to_string(launcher);
+  for (int i = 0; i < 8; ++i)
+    std::system(("ip netns delete maptr-" + tag + "-h" + std::to_string(i) + " 2>/dev/null").c_str());
+  std::system(("ip link delete mbr" + tag + " 2>/dev/null").c_str());
+  std::filesystem::remove("/run/maptr-hosts/" + tag + ".lock");
+}
+
+/// Runs `maptr ARGS`; returns the result and the launcher's pid (its network's tag).
+CliResult run_hosts(const std::vector<std::string>& args, const std::string& out, double timeout_s,
+                    pid_t& pid) {
+  CliResult r;
+  r.run_dir = out;
+  pid = start_cli(args, out + ".out");
+  const int code = wait_child(pid, timeout_s);
+  r.timed_out = code == kTimedOut;
+  r.exit_code = r.timed_out ? -1 : code;
+  std::ifstream in(out + ".out");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.output = ss.str();
+  std::ifstream js(out + "/summary.json");
+  if (js) js >> r.summary;
+  if (network_left(pid)) {
+    ADD_FAILURE() << "the run left its network behind";
+    remove_network(pid);
+  }
+  return r;
+}
+
+bool rejoined(const nlohmann::json& s, const std::string& name) {
+  for (const auto& e : s["plant"]["membership_events"])
+    if (e["name"] == name && e["event"] == "rejoined") return true;
+  return false;
+}
+
+std::vector<std::string> on_host(const nlohmann::json& s, const std::string& host) {
+  for (const auto& h : s["hosts"])
+    if (h["name"] == host) return h["processes"].get<std::vector<std::string>>();
+  return {};
+}
+
+class Hosts : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (geteuid() != 0) GTEST_SKIP() << kNeedsRoot;
+  }
+};
+
+}  // namespace
+
+TEST_F(Hosts, FaultFreeTraceOnThreeHostsIsTheOneHostTrace) {
+  TempDir tmp;
+  pid_t pid = 0;
+  const auto one = run_cli(run_args(tmp.path() + "/one", {"--duration", "8"}), tmp.path() + "/one", 300);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const auto three = run_hosts(run_args(tmp.path() + "/three", {"--duration", "8", "--hosts", "3"}),
+                               tmp.path() + "/three", 300, pid);
+  ASSERT_EQ(three.exit_code, 0) << three.output;
+  EXPECT_EQ(three.summary["trace_sha256"], one.summary["trace_sha256"]);
+  ASSERT_EQ(three.summary["hosts"].size(), 3u);
+  // Every host's data crossed its link: the ticks in, the answers out.
+  const double ticks = three.summary["plant"].value("ticks", 800.0);
+  for (const auto& h : three.summary["hosts"]) {
+    EXPECT_GT(h["bytes_sent"].get<double>(), 100.0 * ticks) << h.dump();
+    EXPECT_GT(h["bytes_received"].get<double>(), 100.0 * ticks) << h.dump();
+  }
+  EXPECT_FALSE(one.summary.contains("hosts"));
+}
+
+TEST_F(Hosts, KillingAHostWithAgentsOfBothSidesKeepsTheRobotGoing) {
+  TempDir tmp;
+  pid_t pid = 0;
+  const std::string out = tmp.path() + "/run";
+  const auto r =
+      run_hosts(run_args(out, {"--agents", "16", "--duration", "40", "--hosts", "3", "--kill-host", "h2@20"}),
+                out, 600, pid);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto& s = r.summary;
+  EXPECT_EQ(s["status"], "ok");
+  ASSERT_EQ(s["failures"].size(), 1u);
+  const auto& f = s["failures"][0];
+  EXPECT_FALSE(f.contains("skipped")) << f.dump();
+  EXPECT_FALSE(f["detected_s"].is_null()) << f.dump();
+  EXPECT_FALSE(f["recovered_s"].is_null()) << "speed back within 2 %: " << f.dump();
+  const auto procs = on_host(s, "h2");
+  EXPECT_TRUE(std::any_of(procs.begin(), procs.end(), [](auto& n) { return n[0] == 'L'; }));
+  EXPECT_TRUE(std::any_of(procs.begin(), procs.end(), [](auto& n) { return n[0] == 'R'; }));
+}
+
+TEST_F(Hosts, PartitionedHostRejoinsAfterTheHeal) {
+  TempDir tmp;
+  pid_t pid = 0;
+  const std::string out = tmp.path() + "/run";
+  const auto r = run_hosts(run_args(out, {"--agents", "8", "--duration", "40", "--hosts", "3", "--partition",
+                                          "h2@10", "--heal", "h2@20"}),
+                           out, 600, pid);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto& s = r.summary;
+  EXPECT_EQ(s["status"], "ok");
+  for (const auto& name : on_host(s, "h2")) EXPECT_TRUE(rejoined(s, name)) << name << " did not rejoin";
+  ASSERT_EQ(s["failures"].size(), 2u);
+  EXPECT_FALSE(s["failures"][1]["detected_s"].is_null()) << s["failures"].dump();
+}
+
+TEST_F(Hosts, ProcessOfALostHostRestartsElsewhereThroughTheOtherDiscoveryServers) {
+  TempDir tmp;
+  pid_t pid = 0;
+  const std::string out = tmp.path() + "/run";
+  const auto r = run_hosts(run_args(out, {"--agents", "8", "--duration", "30", "--hosts", "3", "--kill-host",
+                                          "h2@10", "--restart", "L2@15"}),
+                           out, 600, pid);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto& s = r.summary;
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_TRUE(rejoined(s, "L2"));
+  for (const auto& p : s["processes"])
+    if (p["name"] == "L2") EXPECT_NE(p["host"], "h2") << p.dump();
+}
+
+TEST_F(Hosts, NothingIsLeftAfterTheLauncherIsKilled) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  const pid_t pid =
+      start_cli(run_args(out, {"--hosts", "3", "--realtime", "--duration", "120"}), out + ".out");
+  ASSERT_TRUE(wait_for([&] { return read_json(out + "/fleet.json").contains("processes"); }, 120));
+  ASSERT_TRUE(network_left(pid));
+  std::vector<pid_t> kids;
+  for (const auto& p : read_json(out + "/fleet.json")["processes"]) kids.push_back(p["pid"].get<pid_t>());
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  EXPECT_TRUE(wait_for(
+      [&] { return std::none_of(kids.begin(), kids.end(), [](pid_t k) { return process_running(k); }); },
+      30));
+  // The next run on hosts removes what the killed one left.
+  pid_t next = 0;
+  const auto r = run_hosts(run_args(tmp.path() + "/next", {"--hosts", "2", "--duration", "1"}),
+                           tmp.path() + "/next", 300, next);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(network_left(pid));
+  if (network_left(pid)) remove_network(pid);
+}
+
+TEST_F(Hosts, WithoutRootHostsExitTwoAndSayWhy) {
+  TempDir tmp;
+  const passwd* nobody = getpwnam("nobody");
+  if (!nobody) GTEST_SKIP() << "no user 'nobody' to run without root";
+  const std::string log = tmp.path() + "/out";
+  chmod(tmp.path().c_str(), 0777);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (setgid(nobody->pw_gid) != 0 || setuid(nobody->pw_uid) != 0) _exit(99);
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    const std::string bin = std::string(MAPTR_BIN_DIR) + "/maptr";
+    execl(bin.c_str(), bin.c_str(), "run", "--hosts", "3", "--out", "/nonexistent/never", nullptr);
+    _exit(127);
+  }
+  const int code = wait_child(pid, 60);
+  if (code == 99 || code == 127) GTEST_SKIP() << "cannot run the CLI as 'nobody' here";
+  EXPECT_EQ(code, 2);
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_NE(ss.str().find("needs root"), std::string::npos) << ss.str();
+}
