@@ -356,7 +356,7 @@ void Fleet::end() {
   const auto reap_expected = [this] { reap(true); };
   // Paused processes go on first: a stopped process handles neither the last tick nor SIGTERM.
   signal_all(kids_, SIGCONT);
-  if (ds_paused_ && ds_->running()) kill(ds_->pid(), SIGCONT);
+  if (ds_paused_ && !ds_.empty() && ds_.front()->running()) kill(ds_.front()->pid(), SIGCONT);
   ds_paused_ = false;
   wait_all(kids_, rec_.status == "ok" ? cfg_.end_clean_s : cfg_.end_aborted_s, reap_expected);
   signal_all(kids_, SIGTERM);

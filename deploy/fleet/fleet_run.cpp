@@ -96,7 +96,7 @@ void Fleet::apply_fault(const config::FaultSpec& f, double at_s, const std::stri
   const bool discovery = f.target == kDiscoveryTarget;
   Child* c = discovery ? nullptr : find(f.target);
   TargetState s;
-  if (discovery && !ds_.empty()) s = {true, false, ds_->running(), ds_paused_};
+  if (discovery && !ds_.empty()) s = {true, false, ds_.front()->running(), ds_paused_};
   if (c) s = {true, c->external, c->running, c->paused};
   const FaultAction a = decide_fault(f, s);
   const pid_t pid = discovery ? (ds_.empty() ? -1 : ds_.front()->pid()) : (c ? c->pid : -1);

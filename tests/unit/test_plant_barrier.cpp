@@ -96,3 +96,38 @@ TEST(PlantBarrier, RestartedMemberIsExpectedAndTheTickResent) {
 }
 
 }  // namespace
+
+namespace {
+
+// An idle agent not due (excused) is not waited for; a rejoining one always is.
+TEST(PlantBarrier, ExcusedIdleAgentsAreNotWaitedForButRejoiningOnesAre) {
+  Membership m = fresh();
+  m.begin_tick([](int side, int index) { return side == 0 && index == 1; });  // L1 idle, not due
+  answer_all_but(m, {kL1});
+  EXPECT_TRUE(Barrier::complete(m));
+  EXPECT_EQ(Barrier::late_count(m), 0);
+
+  m.on_launcher(1, LauncherEvent::kStarted, "L1");  // restarted: rejoining
+  m.begin_tick([](int side, int index) { return side == 0 && index == 1; });
+  answer_all_but(m, {kL1});
+  EXPECT_FALSE(Barrier::complete(m));
+  EXPECT_EQ(Barrier::late_count(m), 1);
+  EXPECT_EQ(names(Barrier::late(m)), std::vector<std::string>{"L1"});
+}
+
+// A tick is sent again only when no answer came for the repair interval, which follows the
+// typical barrier time and never goes below its floor.
+TEST(PlantBarrier, RepairWhenNoAnswerCameForTheRepairInterval) {
+  Barrier b(10.0, 0.2);
+  b.set_repair(0.001, 10.0, 0.05);  // 10 x 1 ms is below the 50 ms floor
+  b.start(100.0);
+  EXPECT_FALSE(b.repair_due(3, 100.04));  // answers arrived: progress
+  EXPECT_FALSE(b.repair_due(3, 100.08));  // 40 ms without: not yet
+  EXPECT_TRUE(b.repair_due(3, 100.095));  // 55 ms without: send again
+  EXPECT_FALSE(b.repair_due(3, 100.12));  // the send restarts the interval
+  b.set_repair(0.02, 10.0, 0.05);         // typical 20 ms: 200 ms
+  EXPECT_FALSE(b.repair_due(3, 100.25));
+  EXPECT_TRUE(b.repair_due(3, 100.35));
+}
+
+}  // namespace
