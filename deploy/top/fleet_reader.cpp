@@ -164,8 +164,11 @@ FleetReader::FleetReader(const FleetCoordinates& c)
   auto& p = *p_;
   auto* sub = p.raw()->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
   if (!sub) throw std::runtime_error("cannot create the DDS subscriber of maptr top");
+  const bool replay = c.info.replay_rate > 0;
   auto watch = [&](dds::Topic* t, int depth, dds::DataReaderListener* l) {
-    if (!sub->create_datareader(t, watch_qos(depth), l, dds::StatusMask::data_available()))
+    if (replay)
+      p.reader(t, comm::Profile::kStream, l, depth);
+    else if (!sub->create_datareader(t, watch_qos(depth), l, dds::StatusMask::data_available()))
       throw std::runtime_error("cannot create a reader on " + t->get_name());
   };
   watch(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), kTickDepth, &in_->ticks);
