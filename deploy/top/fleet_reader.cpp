@@ -171,7 +171,6 @@ FleetReader::FleetReader(const FleetCoordinates& c)
     else if (!sub->create_datareader(t, watch_qos(depth), l, dds::StatusMask::data_available()))
       throw std::runtime_error("cannot create a reader on " + t->get_name());
   };
-  watch(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), kTickDepth, &in_->ticks);
   watch(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), std::max(1, c.info.agents),
         &in_->replies);
   watch(p.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), kGroupDepth, &in_->groups);
@@ -180,6 +179,9 @@ FleetReader::FleetReader(const FleetCoordinates& c)
            &in_->members);
   p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &in_->gates);
   p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &in_->ready);
+  // The tick reader last: a replay starts once its tick writer has matched this reader, and
+  // discovery announces readers in the order they are created, so the others have matched too.
+  watch(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), kTickDepth, &in_->ticks);
 }
 
 FleetReader::~FleetReader() { p_.reset(); }
