@@ -66,7 +66,7 @@ ReplayProcess::ReplayProcess(const std::string& maptr, const std::string& run_di
   // Everything the child needs is prepared before fork(): between fork and exec the child of a
   // multi-threaded process may only make async-signal-safe calls.
   char rate_text[32];
-  std::snprintf(rate_text, sizeof(rate_text), "%.17g", rate);
+  std::snprintf(rate_text, sizeof(rate_text), "%.15g", rate);
   std::vector<std::string> args = {maptr,
                                    "replay",
                                    run_dir,
@@ -90,7 +90,7 @@ ReplayProcess::ReplayProcess(const std::string& maptr, const std::string& run_di
   pid_ = fork();
   if (pid_ < 0) throw std::runtime_error("cannot start maptr replay (fork failed)");
   if (pid_ == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    prctl(PR_SET_PDEATHSIG, SIGKILL);  // UDP only: a killed replayer leaves no file behind
     if (getppid() != parent) _exit(1);
     setpgid(0, 0);  // a Ctrl-C in the terminal reaches maptr top only; it ends the replay
     const int fd = open("/dev/null", O_RDWR);

@@ -1,9 +1,10 @@
 #pragma once
 // The replayer of `maptr top --run` on a finished run: `maptr replay RUN --domain D --rate X
 // --wait-reader S --quiet` as a child process. It publishes over UDP only (no shared-memory
-// files to leave behind), its output is discarded (it would tear the full-screen view), it
-// ends when `maptr top` dies (PR_SET_PDEATHSIG) and is ended by its PID when the watch ends
-// (SIGTERM, then SIGKILL after kStopGrace_s).
+// files to leave behind), its output is discarded (it would tear the full-screen view), it is
+// killed when `maptr top` dies (PR_SET_PDEATHSIG) and is ended by its PID when the watch ends
+// (SIGTERM, which lets it stop while the watcher still acknowledges, then SIGKILL after
+// kStopGrace_s).
 #include <sys/types.h>
 
 #include <string>
