@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
     if (level2->parsed()) return cmd_level2(level2_args);
     if (kill->parsed()) return cmd_signal("kill", kill_args);
     if (restart->parsed()) return cmd_signal("restart", restart_args);
-    if (top->parsed()) return cmd_top(top_args);
+    if (top->parsed()) return cmd_top(top_args, bin_dir(argv[0]));
     if (replay->parsed()) return cmd_replay(replay_args);
     if (plot->parsed()) return cmd_plot(plot_args);
     if (pause->parsed()) return cmd_signal("pause", pause_args);

@@ -164,11 +164,13 @@ FleetReader::FleetReader(const FleetCoordinates& c)
   auto& p = *p_;
   auto* sub = p.raw()->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
   if (!sub) throw std::runtime_error("cannot create the DDS subscriber of maptr top");
+  const bool replay = c.info.replay_rate > 0;
   auto watch = [&](dds::Topic* t, int depth, dds::DataReaderListener* l) {
-    if (!sub->create_datareader(t, watch_qos(depth), l, dds::StatusMask::data_available()))
+    if (replay)
+      p.reader(t, comm::Profile::kStream, l, depth);
+    else if (!sub->create_datareader(t, watch_qos(depth), l, dds::StatusMask::data_available()))
       throw std::runtime_error("cannot create a reader on " + t->get_name());
   };
-  watch(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), kTickDepth, &in_->ticks);
   watch(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), std::max(1, c.info.agents),
         &in_->replies);
   watch(p.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), kGroupDepth, &in_->groups);
@@ -177,6 +179,9 @@ FleetReader::FleetReader(const FleetCoordinates& c)
            &in_->members);
   p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &in_->gates);
   p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &in_->ready);
+  // The tick reader last: a replay starts once its tick writer has matched this reader, and
+  // discovery announces readers in the order they are created, so the others have matched too.
+  watch(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), kTickDepth, &in_->ticks);
 }
 
 FleetReader::~FleetReader() { p_.reset(); }

@@ -17,6 +17,10 @@
 // - no fleet GUID prefix: the fleet's processes do not count it among their own readers.
 // Samples are kept only when their writer carries the fleet's id (fleet_id 0: any writer, for
 // a replay published by another participant).
+//
+// A replay (RunInfo::replay_rate > 0) has no fleet to slow down: its lock-step readers are the
+// fleet's reliable stream profile with the same depths, so the recording's last tick always
+// arrives, and the replay is joined by simple discovery (no discovery server).
 #include <memory>
 #include <string>
 

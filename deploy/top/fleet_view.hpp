@@ -75,11 +75,12 @@ const char* phase_name(Phase p);
 
 /// What the fleet's coordinates say before any sample arrives.
 struct RunInfo {
-  std::string scenario;   ///< scenario name
-  std::string run_dir;    ///< run folder
-  int agents = 0;         ///< fleet size
-  double duration_s = 0;  ///< simulated s
-  int domain = 0;         ///< DDS domain
+  std::string scenario;    ///< scenario name
+  std::string run_dir;     ///< run folder
+  int agents = 0;          ///< fleet size
+  double duration_s = 0;   ///< simulated s
+  int domain = 0;          ///< DDS domain
+  double replay_rate = 0;  ///< > 0: a replay of the run's recording at this many times its pace
 };
 
 /// Median and 99th percentile of the tick intervals, ms; n intervals (0: none yet).

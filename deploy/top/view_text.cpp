@@ -44,8 +44,10 @@ const char* level2_name(msg::Level2Status s) {
 
 std::vector<std::string> head(const FleetView& v) {
   std::vector<std::string> out;
-  std::string h = fmt("maptr top  %s  %d agents  domain %d  %s", v.info().scenario.c_str(), v.info().agents,
-                      v.info().domain, phase_name(v.phase()));
+  std::string h = fmt("maptr top  %s  %d agents  domain %d  ", v.info().scenario.c_str(), v.info().agents,
+                      v.info().domain);
+  if (v.info().replay_rate > 0) h += fmt("replay %gx  ", v.info().replay_rate);
+  h += phase_name(v.phase());
   if (v.phase() == Phase::kWaiting) h += fmt("  (%d ready)", v.ready_nodes());
   out.push_back(h);
   const TickStats ts = v.tick_stats();

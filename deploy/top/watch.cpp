@@ -27,30 +27,69 @@ bool run_is_live(const std::string& run_dir) {
   }
 }
 
-std::optional<FleetCoordinates> start_replay(const std::string& run_dir, std::string& why) {
-  why = run_dir +
-        " has ended, and watching a finished run replays its recording, which this build "
-        "does not make yet (no recording support)";
-  return std::nullopt;
+std::optional<FleetCoordinates> replay_coordinates(const std::string& run_dir, const ReplayRequest& r,
+                                                   std::string& why) {
+  if (!std::filesystem::exists(run_dir + "/run.mcap")) {
+    why = run_dir +
+          " has ended and has no recording to replay (no run.mcap: it ran with --record none, or "
+          "before runs were recorded)";
+    return std::nullopt;
+  }
+  FleetCoordinates c;
+  try {
+    c = read_fleet(run_dir);
+  } catch (const std::exception& e) {
+    why = e.what();
+    return std::nullopt;
+  }
+  c.info.domain = r.domain;
+  c.info.replay_rate = r.rate;
+  c.discovery_server.clear();
+  c.fleet_id = 0;
+  c.launcher_pid = 0;
+  return c;
 }
 
 Watch::Watch(FleetCoordinates c) : c_(std::move(c)), view_(c_.info) {}
 
+Watch::Watch(FleetCoordinates c, const ReplayRequest& r)
+    : c_(std::move(c)),
+      view_(c_.info),
+      reader_(std::make_unique<FleetReader>(c_)),
+      replay_(std::make_unique<ReplayProcess>(r.maptr, c_.info.run_dir, r.domain, r.rate)) {}
+
+void Watch::end_run() {
+  const records::Summary s = records::Summary::read(c_.info.run_dir + "/summary.json");
+  if (s.has_status())
+    view_.on_summary(s.status(), s.end_reason());
+  else
+    view_.on_fleet_gone();
+  ended_ = true;
+}
+
 void Watch::poll() {
+  if (replay_) {
+    // Whether the replayer has exited is read before the drain: every sample it sent was
+    // acknowledged by then, so this drain folds the recording's last tick.
+    const bool over = !ended_ && replay_->exited();
+    reader_->drain_into(view_);
+    view_.observe(steady_now_s());
+    if (over) end_run();
+    return;
+  }
   const std::string dir = c_.info.run_dir;
   if (!reader_ && !ended_ && std::filesystem::exists(dir + "/trace.csv"))
     reader_ = std::make_unique<FleetReader>(c_);
   if (reader_) reader_->drain_into(view_);
   view_.observe(steady_now_s());
   if (ended_) return;
-  const records::Summary s = records::Summary::read(dir + "/summary.json");
-  if (s.has_status()) {
-    view_.on_summary(s.status(), s.end_reason());
-    ended_ = true;
-  } else if (!pid_alive(c_.launcher_pid)) {
-    view_.on_fleet_gone();
-    ended_ = true;
-  }
+  if (records::Summary::read(dir + "/summary.json").has_status() || !pid_alive(c_.launcher_pid)) end_run();
+}
+
+std::string Watch::replay_failure() const {
+  if (!replay_ || !ended_ || replay_->exit_code() == 0) return "";
+  if (replay_->exit_code() < 0) return "maptr replay was ended by a signal";
+  return "maptr replay exited with code " + std::to_string(replay_->exit_code());
 }
 
 void Watch::wait(double max_s) {

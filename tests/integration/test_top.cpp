@@ -1,12 +1,16 @@
 // `maptr top` against real fleets (ctest label `integration`): the plain-text snapshot of a
 // 16-agent fleet that lost L3, and the full-screen view in a real terminal (tmux, 80x24): the
-// agents, L3 dead, the final status once the run has ended, and `q` quits. Runs are paced to
-// the wall clock and every check waits for what it expects with a generous timeout.
+// agents, L3 dead, the final status once the run has ended, and `q` quits; a finished run
+// watched through a replay of its recording, and one without a recording. Runs are paced to
+// the wall clock and every check waits for what it expects with a generous timeout; the
+// snapshot of a replay is taken once the replay has ended, so it races nothing.
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <iterator>
 #include <regex>
@@ -43,6 +47,27 @@ int cells_with(const std::string& screen, const std::string& state) {
       std::distance(std::sregex_iterator(screen.begin(), screen.end(), cell), std::sregex_iterator()));
 }
 
+/// The status line the view prints for a summary (the same rounding as the screen).
+std::string final_status_line(const nlohmann::json& s) {
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), "final status: %s (%s) at t %.2f s, energy %.1f J, %.1f m",
+                s.value("status", "?").c_str(), s.at("plant").value("end_reason", "?").c_str(),
+                s.value("sim_time_s", NAN), s.value("energy_J", NAN), s.value("distance_m", NAN));
+  return buf;
+}
+
+/// A side's row of the side table: battery V, discharge mAh, active agents.
+struct SideRow {
+  double battery_V = NAN, discharge_mAh = NAN;
+  int active = -1;
+};
+SideRow side_row(const std::string& screen, const std::string& side) {
+  const std::regex row("\\n" + side + " +([0-9.]+) V +([0-9.]+) mAh +([0-9]+)/");
+  std::smatch m;
+  if (!std::regex_search(screen, m, row)) return {};
+  return {std::stod(m[1]), std::stod(m[2]), std::stoi(m[3])};
+}
+
 }  // namespace
 
 TEST(Top, OnceShowsTheKilledAgentDeadAndFifteenLive) {
@@ -57,11 +82,6 @@ TEST(Top, OnceShowsTheKilledAgentDeadAndFifteenLive) {
   kill(launcher, SIGINT);
   EXPECT_GE(wait_child(launcher, 120), 0);
   ASSERT_TRUE(seen) << screen;
-  // A finished run is watched through a replay of its recording, which this build does not make.
-  const std::string after =
-      shell(std::string(MAPTR_BIN_DIR) + "/maptr top --once --run " + out + " 2>&1; echo exit=$?");
-  EXPECT_NE(after.find("no recording support"), std::string::npos) << after;
-  EXPECT_NE(after.find("exit=2"), std::string::npos) << after;
   std::cout << screen;
   EXPECT_EQ(cells_with(screen, "dead"), 1) << screen;
   EXPECT_NE(screen.find("L3 died"), std::string::npos) << screen;
@@ -116,4 +136,46 @@ TEST(Top, FullScreenUnderTmuxShowsAgentsTheDeadOneAndTheFinalStatus) {
   std::cout << final_screen;
   EXPECT_NE(final_screen.find("L3   dead"), std::string::npos) << final_screen;
   EXPECT_TRUE(quit) << screen;
+}
+
+TEST(Top, OnceOnAFinishedRunReplaysItsRecordingAndShowsTheRecordedEnd) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  const CliResult run = run_cli(run_args(out, {"--duration", "10", "--kill", "L3@5"}), out, 300);
+  ASSERT_TRUE(run.exit_code == 0 || run.exit_code == 3) << run.output;  // ok or degraded
+  ASSERT_TRUE(std::filesystem::exists(out + "/run.mcap")) << run.output;
+  // The snapshot of a replay waits for the replay's end: no race with the run's pace.
+  const CliResult top = run_cli({"top", "--once", "--run", out, "--rate", "2"}, tmp.path() + "/top", 300);
+  const std::string& screen = top.output;
+  std::cout << screen;
+  ASSERT_EQ(top.exit_code, 0) << screen;
+  EXPECT_NE(screen.find("replay 2x  finished"), std::string::npos) << screen;
+  EXPECT_TRUE(shows_l3_dead(screen)) << screen;
+  EXPECT_EQ(cells_with(screen, "dead"), 1) << screen;
+  EXPECT_NE(screen.find("L3 died"), std::string::npos) << screen;
+  int live_cells = 0;
+  for (const char* st : {"active", "idle", "holding", "coasting", "stopping"})
+    live_cells += cells_with(screen, st);
+  EXPECT_EQ(live_cells, 15) << screen;
+  // The recorded end, as summary.json has it: status, time, energy, distance, and per side the
+  // battery, its discharge and the active agents (within the screen's rounding).
+  const nlohmann::json& s = run.summary;
+  EXPECT_NE(screen.find(final_status_line(s)), std::string::npos) << final_status_line(s) << "\n" << screen;
+  for (const char* side : {"L", "R"}) {
+    const SideRow r = side_row(screen, side);
+    EXPECT_NEAR(r.battery_V, s.at("plant").at("battery_V").value(side, NAN), 0.005 + 1e-9) << side;
+    EXPECT_NEAR(r.discharge_mAh, s.at("battery_discharge_mAh").value(side, NAN), 0.0005 + 1e-9) << side;
+    EXPECT_EQ(r.active, s.at("active_agents").value(side, -1)) << side;
+  }
+}
+
+TEST(Top, AFinishedRunWithoutARecordingIsAClearError) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  const CliResult run = run_cli(run_args(out, {"--duration", "2", "--record", "none"}), out, 300);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_FALSE(std::filesystem::exists(out + "/run.mcap"));
+  const CliResult top = run_cli({"top", "--once", "--run", out}, tmp.path() + "/top", 120);
+  EXPECT_EQ(top.exit_code, 2) << top.output;
+  EXPECT_NE(top.output.find("no recording to replay (no run.mcap"), std::string::npos) << top.output;
 }

@@ -1,0 +1,132 @@
+#include "deploy/top/replay_process.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "comm/shm_files.hpp"
+
+extern char** environ;
+
+namespace maptr::top {
+
+namespace {
+
+/// RTPS ports of a domain: simple-discovery multicast d0 + 0, unicast metatraffic d0 + 2 id + 10
+/// and user data d0 + 2 id + 11.
+constexpr int kMulticastOffset = 0, kMetatrafficOffset = 10, kUserOffset = 11, kPortsPerId = 2;
+/// Participant ids probed: every process of a fleet or replay on the domain holds the lowest ones.
+constexpr int kProbedIds = 4;
+constexpr auto kReapPoll = std::chrono::milliseconds(20);
+
+/// True when a UDP socket can bind `port` on `address` (without SO_REUSEADDR, so a port that
+/// Fast DDS holds with SO_REUSEADDR, as its multicast ports, counts as taken too).
+bool udp_port_free(uint32_t address, int port) {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return false;
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  a.sin_addr.s_addr = htonl(address);
+  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
+  close(fd);
+  return ok;
+}
+
+}  // namespace
+
+bool domain_in_use(int domain) {
+  const int base = comm::rtps_domain_port_base(domain);
+  if (!udp_port_free(INADDR_ANY, base + kMulticastOffset)) return true;
+  for (int id = 0; id < kProbedIds; ++id)
+    for (int offset : {kMetatrafficOffset, kUserOffset})
+      if (!udp_port_free(INADDR_ANY, base + offset + kPortsPerId * id)) return true;
+  return false;
+}
+
+int free_domain(int highest) {
+  for (int d = highest; d >= kLowestReplayDomain; --d)
+    if (!domain_in_use(d)) return d;
+  throw std::runtime_error("no free DDS domain between " + std::to_string(kLowestReplayDomain) + " and " +
+                           std::to_string(highest));
+}
+
+ReplayProcess::ReplayProcess(const std::string& maptr, const std::string& run_dir, int domain, double rate) {
+  // Everything the child needs is prepared before fork(): between fork and exec the child of a
+  // multi-threaded process may only make async-signal-safe calls.
+  char rate_text[32];
+  std::snprintf(rate_text, sizeof(rate_text), "%.15g", rate);
+  std::vector<std::string> args = {maptr,
+                                   "replay",
+                                   run_dir,
+                                   "--domain",
+                                   std::to_string(domain),
+                                   "--rate",
+                                   rate_text,
+                                   "--wait-reader",
+                                   std::to_string(kReplayWaitReader_s),
+                                   "--quiet"};
+  std::vector<std::string> env_store;
+  for (char** e = environ; *e; ++e)
+    if (std::string(*e).rfind("MAPTR_TRANSPORT=", 0) != 0) env_store.push_back(*e);
+  env_store.push_back("MAPTR_TRANSPORT=udp");
+  std::vector<char*> argv, envp;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  for (auto& e : env_store) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  const pid_t parent = getpid();
+  pid_ = fork();
+  if (pid_ < 0) throw std::runtime_error("cannot start maptr replay (fork failed)");
+  if (pid_ == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);  // UDP only: a killed replayer leaves no file behind
+    if (getppid() != parent) _exit(1);
+    setpgid(0, 0);  // a Ctrl-C in the terminal reaches maptr top only; it ends the replay
+    const int fd = open("/dev/null", O_RDWR);
+    if (fd >= 0) {
+      dup2(fd, 0);
+      dup2(fd, 1);
+      dup2(fd, 2);
+      close(fd);
+    }
+    execve(argv[0], argv.data(), envp.data());
+    _exit(127);
+  }
+}
+
+ReplayProcess::~ReplayProcess() {
+  if (exited()) return;
+  kill(pid_, SIGTERM);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!exited()) {
+    if (std::chrono::steady_clock::now() - t0 > std::chrono::duration<double>(kStopGrace_s)) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+      reaped_ = true;
+      return;
+    }
+    std::this_thread::sleep_for(kReapPoll);
+  }
+}
+
+bool ReplayProcess::exited() {
+  if (reaped_) return true;
+  int st = 0;
+  if (waitpid(pid_, &st, WNOHANG) != pid_) return false;
+  reaped_ = true;
+  exit_code_ = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return true;
+}
+
+}  // namespace maptr::top
