@@ -120,7 +120,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "rms_speed_error_pct",
                                          "rejected_samples",
                                          "rejected_by_process",
-                                         "missed_deadlines",
+                                         "missed_deadlines", "tick_repairs",
                                          "tick_timing_us",
                                          "declared_dead_by_deadline",
                                          "membership_events",
