@@ -212,7 +212,7 @@ TEST(Fleet, ADomainWhosePortsCannotHoldTheFleetIsRefused) {
 TEST(Fleet, ADiscoveryTimeoutIsRetriedOnceAndTheSummarySaysSo) {
   TempDir tmp;
   const std::string out = tmp.path() + "/run";
-  auto r = run_cli(run_args(out, {"--agents", "2", "--duration", "2", "--external", "L0"}), out, 300);
+  auto r = run_cli(run_args(out, {"--agents", "4", "--duration", "2", "--external", "L0"}), out, 300);
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_NE(r.exit_code, 0);
   const std::string status = r.summary["status"];
