@@ -158,16 +158,28 @@ TEST(QosProfiles, TheShippedProfilesGiveTheProtocolsQos) {
   auto* t = p.topic<msg::PlantTickPubSubType>(topic::kTick);
   auto* w = p.writer(t, Profile::kStream);
   const auto wq = w->get_qos();
-  EXPECT_EQ(wq.reliability().kind, eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS);
+  // Lock-step data: best effort (the lock-step repairs a loss itself), synchronous, and no
+  // endpoint lease (the participant's lease tells a death).
+  EXPECT_EQ(wq.reliability().kind, eprosima::fastdds::dds::BEST_EFFORT_RELIABILITY_QOS);
   EXPECT_EQ(wq.durability().kind, eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS);
   EXPECT_EQ(wq.history().kind, eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS);
   EXPECT_EQ(wq.history().depth, 32);
   EXPECT_EQ(wq.publish_mode().kind, eprosima::fastdds::dds::SYNCHRONOUS_PUBLISH_MODE);
-  EXPECT_EQ(wq.reliable_writer_qos().times.heartbeatPeriod, eprosima::fastrtps::Duration_t(0, 50000000));
-  EXPECT_EQ(wq.liveliness().lease_duration, eprosima::fastrtps::Duration_t(p.options().lease_s));
+  EXPECT_EQ(wq.liveliness().lease_duration, eprosima::fastrtps::c_TimeInfinite);
   auto* l = p.writer(p.topic<msg::MembershipEventPubSubType>(topic::kMembership), Profile::kLatched);
   EXPECT_EQ(l->get_qos().durability().kind, eprosima::fastdds::dds::TRANSIENT_LOCAL_DURABILITY_QOS);
   EXPECT_EQ(l->get_qos().history().kind, eprosima::fastdds::dds::KEEP_ALL_HISTORY_QOS);
+  EXPECT_EQ(l->get_qos().reliability().kind, eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS);
+}
+
+// This host's shared-memory locator carries the kind and the unicast mark Fast DDS gives it;
+// the port is left to Fast DDS (the participant's well-known port).
+TEST(ShmLocator, IsAUnicastSharedMemoryLocatorWithoutAPort) {
+  const auto loc = shm_unicast_locator();
+  EXPECT_EQ(loc.kind, LOCATOR_KIND_SHM);
+  EXPECT_EQ(loc.port, 0u);
+  EXPECT_EQ(loc.address[0], 'U');
+  EXPECT_EQ(shm_unicast_locator(), loc);  // the same host id every time
 }
 
 TEST(QosProfiles, FastDdsDefaultProfilesFileReplacesTheShippedOne) {
