@@ -48,8 +48,9 @@ uint64_t Signal::wait_until(uint64_t seen, std::chrono::steady_clock::time_point
 void MatchCounter::on_publication_matched(dds::DataWriter*, const dds::PublicationMatchedStatus& s) {
   if (fleet_id_ == 0)
     matched_.store(s.current_count);
-  else if (fleet_participant(fleet_id_, s.last_subscription_handle))
-    matched_.fetch_add(s.current_count_change);
+  else if (fleet_participant(fleet_id_, s.last_subscription_handle) ||
+           secure_identity(eprosima::fastrtps::rtps::iHandle2GUID(s.last_subscription_handle).guidPrefix))
+    matched_.fetch_add(s.current_count_change);  // on a secure domain: a certified member
   if (signal_) signal_->notify();
 }
 
@@ -216,6 +217,7 @@ void load_qos_profiles() {
 
 const char* profile_name(Profile p, bool writer) {
   if (p == Profile::kStream) return writer ? "maptr_stream_writer" : "maptr_stream_reader";
+  if (p == Profile::kReliableStream) return writer ? "maptr_reliable_stream_writer" : "maptr_reliable_stream_reader";
   return writer ? "maptr_latched_writer" : "maptr_latched_reader";
 }
 

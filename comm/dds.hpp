@@ -65,8 +65,9 @@ inline constexpr const char* kGate = "maptr/gate";
 /// The QoS profiles of the protocol, defined in comm/maptr_qos.xml (installed as
 /// bin/maptr_qos.xml; FASTRTPS_DEFAULT_PROFILES_FILE replaces it).
 enum class Profile {
-  kStream,   ///< lock-step data: reliable, keep-last, volatile, fast heartbeats
+  kStream,   ///< lock-step data: best effort, keep-last, volatile (the lock-step repairs a loss)
   kLatched,  ///< events and readiness: reliable, transient-local, keep-all
+  kReliableStream,  ///< lock-step data where nothing repairs a loss (a replay): reliable, keep-last
 };
 
 /// The XML file the QoS profiles come from (loaded once per process).

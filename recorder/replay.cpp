@@ -30,7 +30,10 @@ std::map<uint16_t, dds::DataWriter*> make_writers(comm::Participant& p, const re
     const comm::FleetTopic* known = comm::find_fleet_topic(ch.topic);
     const uint32_t size = known ? known->max_size : kUnknownTypeSize;
     auto* topic = p.topic(ch.topic, new comm::RawType(s->second.name, size));
-    out[id] = p.writer(topic, known ? known->profile : comm::Profile::kStream);
+    // Nothing repairs a lost sample of a replay: the lock-step topics go out reliably.
+    const comm::Profile profile = known && known->profile == comm::Profile::kLatched ? comm::Profile::kLatched
+                                                                                    : comm::Profile::kReliableStream;
+    out[id] = p.writer(topic, profile);
   }
   return out;
 }

@@ -83,7 +83,8 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   rec_.transport = o.transport != "auto" ? o.transport : (agents <= cfg.shm_max_agents ? "shm" : "udp");
   // Between hosts data goes over UDP: every participant then announces both kinds of locator
   // (a peer on the same host is reached over shared memory, one on another host over UDP).
-  if (sc_.hosts.enabled() && rec_.transport == "shm") rec_.transport = "shm+udp";
+  // A secure domain's simple discovery needs every participant's default locators as well.
+  if ((sc_.hosts.enabled() || o.secure) && rec_.transport == "shm") rec_.transport = "shm+udp";
   rec_.chaos_seed = o.chaos_seed;
   dds_.shm = rec_.transport != "udp";
   dds_.shm_data_only = rec_.transport == "shm";
@@ -193,6 +194,7 @@ void Fleet::make_secure_domain() {
   const auto t0 = Clock::now();
   const auto domain = SecureDomain::create(o_.run_dir + "/security", o_.domain);
   domain.add_identity({"launcher", fleet_publish_topics("launcher")});
+  domain.add_identity({"recorder", {}});  // run.mcap: reads every topic, writes none
   for (const auto& c : kids_) domain.add_identity({c.name, fleet_publish_topics(c.name)});
   dds_.security_dir = domain.files().dir;
   env_["MAPTR_SECURITY_DIR"] = dds_.security_dir;
@@ -211,7 +213,7 @@ void Fleet::write_fleet() const {
   // The fleet's coordinates, for tools and for processes started by hand.
   nlohmann::json fleet = {{"launcher_pid", getpid()},
                           {"domain", o_.domain},
-                          {"discovery_server", dds_.discovery_server},
+                          {"discovery_server", ds_.empty() ? nlohmann::json() : nlohmann::json(dds_.discovery_server)},
                           {"discovery_server_pid", ds_.empty() ? nlohmann::json() : nlohmann::json(ds_.front()->pid())},
                           {"secure", secure()},
                           {"security_dir", dds_.security_dir},

@@ -167,7 +167,7 @@ FleetReader::FleetReader(const FleetCoordinates& c)
   const bool replay = c.info.replay_rate > 0;
   auto watch = [&](dds::Topic* t, int depth, dds::DataReaderListener* l) {
     if (replay)
-      p.reader(t, comm::Profile::kStream, l, depth);
+      p.reader(t, comm::Profile::kReliableStream, l, depth);
     else if (!sub->create_datareader(t, watch_qos(depth), l, dds::StatusMask::data_available()))
       throw std::runtime_error("cannot create a reader on " + t->get_name());
   };

@@ -3,9 +3,9 @@
 // it, against the run's summary.json and trace.csv:
 //   - the stream reader reads every record with every CRC checked; the indexed reader reads the
 //     summary, the chunk indexes and every message;
-//   - every channel's message count equals the statistics' and what the fleet published: one
-//     PlantTick per tick, one AgentReply per agent per tick, one GroupStatus per group per tick,
-//     one CentralCommand per tick;
+//   - every channel's message count equals the statistics', and holds what the fleet published:
+//     one PlantTick per tick (and a copy per repair), every answer the lock-step needs, one
+//     GroupStatus per group per tick, one CentralCommand per tick;
 //   - every PlantTick decoded here equals the trace.csv row of its tick.
 // Usage: node check_run_mcap.mjs RUN_DIR        Exit 0 when every check passes.
 import fs from "node:fs";
@@ -70,30 +70,36 @@ for (const ch of reader.channelsById.values()) {
   check(`${ch.topic}: statistics count`, Number(stats.channelMessageCounts.get(ch.id)) === n);
 }
 
-// 3. Counts against what the fleet published.
+// 3. Counts against what the fleet published: one PlantTick per tick, and a copy for every
+// tick the plant sent again (plant.tick_repairs); every answer the lock-step needs (an agent
+// answers every tick it is assigned in, every 10th while idle in a slot of its own, and its
+// first; groups and central every tick). A repeated tick is answered again: copies are allowed.
 const ticks = byTopic["maptr/tick"] ?? [];
 const tickSet = new Set(ticks.map((t) => Number(t.tick)));
-check("one PlantTick per tick", tickSet.size === ticks.length && ticks.length === summary.ticks + 1,
-      `${ticks.length} PlantTicks, ${tickSet.size} distinct, summary ticks ${summary.ticks}`);
-function perTick(topic, per, key) {
-  const msgs = byTopic[topic] ?? [];
-  const seen = new Map();
-  for (const m of msgs) {
-    const k = `${Number(m.tick)}/${key(m)}`;
-    seen.set(k, (seen.get(k) ?? 0) + 1);
-  }
-  const dup = [...seen.values()].filter((v) => v > 1).length;
-  const answered = new Set(msgs.map((m) => Number(m.tick)));
-  const ok = dup === 0 && msgs.length === answered.size * per && [...answered].every((k) => tickSet.has(k));
-  check(`${topic}: ${per} per tick answered`, ok, `${msgs.length} messages over ${answered.size} ticks`);
-  return answered.size;
+const repairs = Number(summary.plant?.tick_repairs ?? 0);
+check("one PlantTick per tick, a copy per repair",
+      tickSet.size === summary.ticks + 1 && ticks.length === summary.ticks + 1 + repairs,
+      `${ticks.length} PlantTicks, ${tickSet.size} distinct, summary ticks ${summary.ticks}, repairs ${repairs}`);
+const sent = new Map(ticks.map((t) => [Number(t.tick), t]));
+function answers(topic, key) {
+  return new Set((byTopic[topic] ?? []).map((m) => `${Number(m.tick)}/${key(m)}`));
 }
 const n = countAgents(summary);
-const answeredByAgents = perTick("maptr/agent_reply", n, (m) => `${m.side}/${m.index}`);
-perTick("maptr/group", 2, (m) => m.side);
-perTick("maptr/central", 1, () => 0);
-check("agents answer every tick but the last", answeredByAgents === ticks.length - 1,
-      `${answeredByAgents} of ${ticks.length}`);
+const perSide = n / 2;
+const replies = answers("maptr/agent_reply", (m) => `${m.side}/${m.index}`);
+let missing = 0;
+for (let k = 0; k < summary.ticks; ++k)
+  for (let side = 0; side < 2; ++side)
+    for (let j = 0; j < perSide; ++j) {
+      const active = sent.get(k).sides[side].active[j] !== 0;
+      const due = (k + side * perSide + j) % 10 === 0;
+      if ((k === 0 || active || due) && !replies.has(`${k}/${side}/${j}`)) ++missing;
+    }
+check("maptr/agent_reply: every needed answer", missing === 0, `${replies.size} distinct answers, ${missing} missing`);
+const statuses = answers("maptr/group", (m) => m.side);
+check("maptr/group: 2 per tick answered", statuses.size === 2 * summary.ticks, `${statuses.size} distinct`);
+const commands = answers("maptr/central", () => 0);
+check("maptr/central: 1 per tick answered", commands.size === summary.ticks, `${commands.size} distinct`);
 
 // 4. PlantTick against trace.csv.
 const lines = fs.readFileSync(`${run}/trace.csv`, "utf8").trim().split("\n");
