@@ -45,9 +45,17 @@ class TickFollower {
   /// resends a tick whose answers did not all arrive) is answered again with the same sample.
   template <class Msg>
   void answer(const Msg& m) {
-    last_answer_ = std::make_shared<Msg>(m);
+    // A follower answers with one message type: the kept copy is made once and then assigned.
+    auto* kept = static_cast<Msg*>(last_answer_.get());
+    if (!kept) {
+      auto first = std::make_shared<Msg>(m);
+      kept = first.get();
+      last_answer_ = std::move(first);
+      resend_ = [this, kept]() { answer_->write(kept); };
+    } else {
+      *kept = m;
+    }
     answered_tick_ = last_tick_;
-    resend_ = [this, a = last_answer_]() { answer_->write(static_cast<Msg*>(a.get())); };
     resend_();
   }
 
