@@ -8,10 +8,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -20,6 +20,8 @@ namespace maptr::deploy::fleet {
 
 namespace {
 constexpr std::chrono::milliseconds kListenPoll{10};
+/// Ports tried by the server of a fleet on one host before the launch gives up.
+constexpr int kStartAttempts = 3;
 /// Discovery port of the servers of a fleet on several hosts: this plus the domain id.
 constexpr int kHostDiscoveryPortBase = 11811;
 
@@ -29,6 +31,21 @@ sockaddr_in loopback(int port) {
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   a.sin_port = htons(static_cast<uint16_t>(port));
   return a;
+}
+/// True once process `pid` runs the program `binary` (it has made its last exec).
+bool runs_binary(pid_t pid, const std::string& binary) {
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec);
+  return !ec && exe == std::filesystem::weakly_canonical(binary, ec);
+}
+
+/// The last non-empty line of a log file ("no output" if there is none).
+std::string last_line(const std::string& path) {
+  std::ifstream f(path);
+  std::string line, last = "no output";
+  while (std::getline(f, line))
+    if (!line.empty()) last = line;
+  return last;
 }
 }  // namespace
 
@@ -45,27 +62,28 @@ int free_udp_port() {
   return ntohs(a.sin_port);
 }
 
-bool udp_port_bound(int port) {
-  int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  if (fd < 0) return false;
-  sockaddr_in a = loopback(port);
-  const bool taken = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0 && errno == EADDRINUSE;
-  close(fd);
-  return taken;
-}
-
 bool udp_port_bound_by(pid_t pid, int port) {
-  // /proc/PID/net/udp lists the sockets of PID's network namespace: "sl local_address ..." with
-  // the address as HEXIP:HEXPORT.
+  // /proc/PID/net/udp lists the UDP sockets of PID's network namespace, one a line:
+  // "sl local_address rem_address st tx:rx tr:when retrnsmt uid timeout inode ...", the address
+  // as HEXIP:HEXPORT. The socket is PID's own when one of its descriptors links to its inode.
+  std::set<std::string> inodes;
   std::ifstream f("/proc/" + std::to_string(pid) + "/net/udp");
   std::string line;
   std::getline(f, line);
   while (std::getline(f, line)) {
     std::istringstream in(line);
-    std::string slot, local;
-    in >> slot >> local;
+    std::string slot, local, remote, state, queues, timer, retransmits, uid, timeout, inode;
+    in >> slot >> local >> remote >> state >> queues >> timer >> retransmits >> uid >> timeout >> inode;
     const auto colon = local.find(':');
-    if (colon != std::string::npos && std::stoi(local.substr(colon + 1), nullptr, 16) == port) return true;
+    if (colon != std::string::npos && std::stoi(local.substr(colon + 1), nullptr, 16) == port)
+      inodes.insert("socket:[" + inode + "]");
+  }
+  if (inodes.empty()) return false;
+  std::error_code ec;
+  for (const auto& fd : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec)) {
+    std::error_code link_ec;
+    const auto target = std::filesystem::read_symlink(fd.path(), link_ec);
+    if (!link_ec && inodes.count(target.string())) return true;
   }
   return false;
 }
@@ -114,7 +132,10 @@ bool DiscoveryServer::start(const Environment& env, ParticipantIds& ids) {
   if (remote_) return true;  // a real machine: the clients retry until it answers
   const auto t0 = Clock::now();
   while (std::chrono::duration<double>(Clock::now() - t0).count() < listen_s_) {
-    if (netns_ ? udp_port_bound_by(c_.pid, port_) : udp_port_bound(port_)) return true;
+    // Read from /proc, never probed by binding: a probe holding the port for a moment makes the
+    // server's own bind fail ("wasn't able to allocate the specified listening port").
+    // Before its exec the child still holds what it inherited: the process must be the server.
+    if (runs_binary(c_.pid, c_.binary) && udp_port_bound_by(c_.pid, port_)) return true;
     int st = 0;
     if (waitpid(c_.pid, &st, WNOHANG) == c_.pid) {
       c_.running = false;
@@ -126,10 +147,22 @@ bool DiscoveryServer::start(const Environment& env, ParticipantIds& ids) {
 }
 
 void DiscoveryServer::start_or_throw(const Environment& env, ParticipantIds& ids) {
-  if (start(env, ids)) return;
-  if (c_.running) kill(c_.pid, SIGKILL), waitpid(c_.pid, nullptr, 0);
-  throw std::runtime_error("the discovery server did not start on " + address_ + " (see " + run_dir_ +
-                           "/logs/discovery.stderr)");
+  // The server of a fleet on one host takes a port found free a moment before; another process
+  // may take it in between. Such a server exits at once, and a fresh port is tried.
+  const bool own_port = count_ == 1 && !netns_ && !remote_;
+  for (int attempt = 1;; ++attempt) {
+    if (start(env, ids)) return;
+    const bool exited = !c_.running;
+    if (c_.running) kill(c_.pid, SIGKILL), waitpid(c_.pid, nullptr, 0);
+    c_.running = false;
+    if (!own_port || !exited || attempt >= kStartAttempts) break;
+    port_ = free_udp_port();
+    address_ = "127.0.0.1:" + std::to_string(port_);
+    c_.args[1] = address_;
+  }
+  throw std::runtime_error("the discovery server did not start on " + address_ + ": " +
+                           last_line(run_dir_ + "/logs/" + c_.name + ".stderr") + " (see " + run_dir_ + "/logs/" +
+                           c_.name + ".stderr)");
 }
 
 bool DiscoveryServer::on_exit(const Exit& e, bool expected) {

@@ -15,9 +15,7 @@ namespace maptr::deploy::fleet {
 
 /// A free UDP port on 127.0.0.1 (throws std::runtime_error if there is none).
 int free_udp_port();
-/// True once some process has bound UDP port `port` on 127.0.0.1.
-bool udp_port_bound(int port);
-/// True once a UDP socket on `port` is bound in the network namespace of process `pid`.
+/// True once process `pid` itself holds a UDP socket bound to `port` (in its network namespace).
 bool udp_port_bound_by(pid_t pid, int port);
 /// The discovery port of every server of a fleet on several hosts, on DDS domain `domain`.
 int host_discovery_port(int domain);
@@ -45,7 +43,8 @@ class DiscoveryServer {
 
   /// Starts it (again) with a fresh participant id; true once it listens.
   bool start(const Environment& env, ParticipantIds& ids);
-  /// Starts it, or throws std::runtime_error (after killing a server that did not listen).
+  /// Starts it, or throws std::runtime_error with its last error line (after killing a server
+  /// that did not listen). The server of a fleet on one host tries up to three free ports.
   void start_or_throw(const Environment& env, ParticipantIds& ids);
   /// A reaped process: true if it was the server. An unexpected death schedules a restart.
   bool on_exit(const Exit& e, bool expected);

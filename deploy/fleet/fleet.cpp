@@ -63,7 +63,6 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
     ds_.push_back(std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
                                                     cfg.discovery_listen_s,
                                                     cfg.discovery_restart_leases * cfg.lease_s(agents)));
-    dds_.discovery_server = ds_.front()->address();
   }
   dds_.participant_id = comm::kLauncherParticipantId;
   // The fleet id makes every participant's GUID prefix say which process of this fleet it is
@@ -98,8 +97,9 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   make_children();
   if (on_hosts()) place_children();
   if (!ds_.empty()) {
-    env_["MAPTR_DISCOVERY_SERVER"] = dds_.discovery_server;
     for (auto& ds : ds_) ds->start_or_throw(env_, ids_);
+    if (!on_hosts()) dds_.discovery_server = ds_.front()->address();  // the port it listens on
+    env_["MAPTR_DISCOVERY_SERVER"] = dds_.discovery_server;
   } else {
     make_secure_domain();
   }
