@@ -8,8 +8,9 @@ namespace maptr::deploy {
 struct BenchOptions {
   std::string what;  ///< "scale" | "tick"
   std::vector<int> agents{4, 8, 16, 32, 64, 128, 256};
-  double duration_s = 30.0;  ///< simulated seconds per run
-  std::string out;           ///< output folder
+  std::vector<std::string> modes{"ec", "all"};  ///< scale: control modes, each at every size
+  double duration_s = 30.0;                     ///< simulated seconds per run
+  std::string out;                              ///< output folder
   std::string bin_dir, source_dir;
   int domain = 0;
   bool replot = false;  ///< scale: redraw scale.png from OUT/scale.csv, run nothing

@@ -34,6 +34,7 @@ constexpr int kAnswersBesideAgents = 3;
 /// The columns of scale.csv (kB, µs) and of scale.md (MB, ms).
 std::vector<report::Column> columns() {
   std::vector<report::Column> cols = {{"agents", "N", 0},
+                                      {"mode", "mode", -1},
                                       {"hosts", "hosts", 0},
                                       {"status", "status", -1, false, true},
                                       {"status_text", "status", -1, true, false},
@@ -61,41 +62,53 @@ std::vector<report::Column> columns() {
   return cols;
 }
 
+/// PSS per agent process the bench draws as its target, MB.
+constexpr double kPssTargetMB = 8.0;
+
+/// `plot` of column `y` (an expression of column values) against N, one curve per control mode
+/// (rows of one host only), without the closing newline.
+std::string plot_by_mode(const std::string& y) {
+  std::string cmd = "plot ";
+  const char* modes[] = {"ec", "all"};
+  for (const char* m : modes)
+    cmd += std::string(cmd.size() > 5 ? ", " : "") + "'scale.csv' using \"agents\":(strcol(\"mode\") eq \"" +
+           m + "\" && column(\"hosts\") == 1 ? " + y + " : NaN) with linespoints title 'mode " + m + "'";
+  return cmd;
+}
+
 /// The plots of scale.png, by column name.
 std::string plot_body() {
-  const std::string f = "scale.csv";
-  std::string rtf = report::plot_command({{f, "agents", "real_time_factor", "linespoints", "RTF", ""}});
-  rtf.pop_back();
-  return "set key autotitle columnhead\n"
-         "set multiplot layout 2,2 title 'MAPTR scale-up on this machine (lock-step, EC mode)'\n"
-         "set logscale x 2\nset grid\nset xlabel 'agent processes N'\n"
+  return "set multiplot layout 2,3 title 'MAPTR scale-up on this machine (lock-step, one host)'\n"
+         "set logscale x 2\nset grid\nset xlabel 'agent processes N'\nset key top left\n"
          "set ylabel 'seconds'\nset title 'launch to all matched'\n" +
-         report::plot_command({{f, "agents", "discovery_s", "linespoints", "all processes matched", ""}}) +
-         "set ylabel 'simulated s per wall s'\nset title 'real-time factor at 100 Hz (log scale)'\nset "
-         "logscale y\n" +
-         rtf + ", 1 with lines dt 2 title 'real time'\n" +
-         "set ylabel 'CPU s per simulated s'\nset title 'CPU cost (log scale)'\n" +
-         report::plot_command({{f, "agents", "cpu_s_per_sim_s", "linespoints", "all processes", ""}}) +
-         "unset logscale y\nset ylabel 'MB'\nset title 'proportional memory (PSS) per agent process'\n"
-         "set yrange [0:14]\n"
-         "plot 'scale.csv' using \"agents\":(column(\"pss_agent_median_kB\")/1024) with linespoints title "
-         "'median', "
-         "'' using \"agents\":(column(\"pss_agent_max_kB\")/1024) with linespoints title 'max', "
-         "12 with lines dt 2 title 'target 12 MB'\n"
-         "unset multiplot\n";
+         plot_by_mode("column(\"discovery_s\")") +
+         "\nset ylabel 'simulated s per wall s'\nset title 'real-time factor at 100 Hz (log scale)'\n"
+         "set logscale y\nset key top right\n" +
+         plot_by_mode("column(\"real_time_factor\")") + ", 1 with lines dt 2 title 'real time'\n" +
+         "set ylabel 'fleet tick / floor tick'\nset title 'tick against the IPC floor (same run)'\n"
+         "unset logscale y\nset key top left\n" +
+         plot_by_mode("column(\"x_floor\")") +
+         "\nset ylabel 'CPU s per simulated s'\nset title 'CPU cost (log scale)'\nset logscale y\n" +
+         plot_by_mode("column(\"cpu_s_per_sim_s\")") +
+         "\nunset logscale y\nset ylabel 'ms'\nset title 'plant tick, median'\n" +
+         plot_by_mode("column(\"tick_median_us\")/1000") +
+         "\nset ylabel 'MB'\nset title 'PSS per agent process, median'\nset yrange [0:*]\n" +
+         plot_by_mode("column(\"pss_agent_median_kB\")/1024") + ", " + std::to_string(kPssTargetMB) +
+         " with lines dt 2 title 'target'\nunset multiplot\n";
 }
 
 void plot(const std::string& dir) {
   report::draw_plot(dir, "scale",
                     "made by `maptr bench scale`; redraw with `maptr bench scale --replot --out DIR`",
-                    report::PlotFrame{"1100,800", ""}, plot_body());
+                    report::PlotFrame{"1500,900", ""}, plot_body());
 }
 
 /// The default scenario with n agents, every moving segment at kScaleSpeed, the last one
 /// stretched to the bench's duration.
-config::Scenario scale_scenario(const BenchOptions& o, int n) {
+config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string& mode) {
   config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/default.yaml");
   s.robot.agents = n;
+  s.mode = mode;
   s.duration_s = o.duration_s;
   s.trace_every = kScaleTraceEvery;
   for (auto& seg : s.trajectory.segments)
@@ -114,11 +127,12 @@ double bridge_bytes_per_tick(const records::Summary& sum) {
   return ticks > 0 ? sent / ticks : 0.0;
 }
 
-/// One fleet size on `hosts` hosts (1: this machine, no namespaces): its row of the table.
-json measure(const BenchOptions& o, int n, int hosts) {
-  const std::string run_dir =
-      o.out + "/runs/N" + std::to_string(n) + (hosts > 1 ? "-hosts" + std::to_string(hosts) : "");
-  config::Scenario s = scale_scenario(o, n);
+/// One fleet size in one control mode on `hosts` hosts (1: this machine, no namespaces): its
+/// row of the table.
+json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
+  const std::string run_dir = o.out + "/runs/N" + std::to_string(n) + "-" + mode +
+                              (hosts > 1 ? "-hosts" + std::to_string(hosts) : "");
+  config::Scenario s = scale_scenario(o, n, mode);
   if (hosts > 1) s.hosts.count = hosts;
   FleetMemory mem;
   FleetCost cost;
@@ -139,6 +153,7 @@ json measure(const BenchOptions& o, int n, int hosts) {
       mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
   json row = {
       {"agents", n},
+      {"mode", mode},
       {"hosts", hosts},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},
@@ -189,19 +204,21 @@ int bench_scale(const BenchOptions& o) {
   int worst = 0;
   std::vector<int> host_counts = {1};
   if (o.hosts > 1) host_counts.push_back(o.hosts);
-  for (int n : o.agents)
-    for (int hosts : host_counts) {
-      std::cerr << "maptr: bench scale N=" << n << " on " << hosts << " host(s) ..." << std::flush;
-      const json row = measure(o, n, hosts);
-      csv << t.csv_row(row) << std::flush;  // a later size that fails leaves the earlier rows
-      t.rows.push_back(row);
-      const std::string status = row["status_full"];
-      std::cerr << " " << status << ", discovery " << row["discovery_s"].get<double>() << " s, RTF "
-                << row["real_time_factor"].get<double>() << ", tick " << row["tick_median_us"].get<double>()
-                << " µs = " << row["x_floor"].get<double>() << " x floor ("
-                << row["floor_median_us"].get<double>() << " µs)\n";
-      if (status != "ok") worst = 1;
-    }
+  for (const std::string& mode : o.modes)  // a mode's rows together: its curves are unbroken
+    for (int n : o.agents)
+      for (int hosts : host_counts) {
+        std::cerr << "maptr: bench scale N=" << n << ", mode " << mode << ", on " << hosts << " host(s) ..."
+                  << std::flush;
+        const json row = measure(o, n, mode, hosts);
+        csv << t.csv_row(row) << std::flush;  // a later size that fails leaves the earlier rows
+        t.rows.push_back(row);
+        const std::string status = row["status_full"];
+        std::cerr << " " << status << ", discovery " << row["discovery_s"].get<double>() << " s, RTF "
+                  << row["real_time_factor"].get<double>() << ", tick " << row["tick_median_us"].get<double>()
+                  << " µs = " << row["x_floor"].get<double>() << " x floor ("
+                  << row["floor_median_us"].get<double>() << " µs)\n";
+        if (status != "ok") worst = 1;
+      }
   report::write_file(o.out + "/scale.md", t.md());
   plot(o.out);
   std::cout << t.md() << "results: " << o.out << "/scale.csv, scale.md, scale.png\n";

@@ -107,7 +107,7 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
       "--chaos", a.chaos,
       "random kills and restarts, pauses and resumes of agents and controllers, reproducible from SEED");
   run->add_option("--external", a.external, "an agent you start yourself (the launcher prints the command)");
-  run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm up to 64 agents)")
+  run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm on one host; data on shm+udp across hosts or with --secure)")
       ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
   run->add_option("--record", a.record, "what run.mcap records: all (default), plant or none");
   run->add_flag("--secure", a.secure,

@@ -37,6 +37,10 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
       ->check(CLI::Range(0, kMaxDomain));
   c->add_option("--hosts", a.o.hosts, "scale: also run each size on N hosts (namespaces; needs root)")
       ->check(CLI::Range(2, 64));
+  c->add_option("--modes", a.o.modes,
+                "scale: comma-separated control modes run at every size (default ec,all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"ec", "all"}));
   c->add_flag("--replot", a.o.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
   return c;
 }
@@ -58,7 +62,9 @@ int cmd_bench(BenchArgs a, const std::string& bin_dir) {
     std::stringstream ss(a.agents);
     for (std::string x; std::getline(ss, x, ',');) {
       try {
-        a.o.agents.push_back(std::stoi(x));
+        std::size_t used = 0;
+        a.o.agents.push_back(std::stoi(x, &used));
+        if (used != x.size()) throw std::invalid_argument(x);
       } catch (...) {
         std::cerr << "maptr: --agents " << a.agents << ": '" << x << "' is not a number\n";
         return 2;

@@ -47,8 +47,9 @@ struct FleetConfig {
   double end_kill_s = 5.0;
   /// The discovery server gets this long after SIGTERM before SIGKILL, s.
   double discovery_term_s = 3.0;
-  /// "auto" transport: shared memory up to this many agents, UDP above.
-  int shm_max_agents = 64;
+  /// A secure fleet's simple discovery runs over shared memory (the loopback interface carries
+  /// no multicast): up to this many agents.
+  int secure_max_agents = 64;
   /// Messages a shared-memory listening port holds: room for every answer of a tick, several
   /// times over (the plant's port takes one from each agent, group and central per tick).
   int shm_port_queue(int agents) const { return std::max(512, 4 * (agents + 8)); }

@@ -79,7 +79,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
     clock_.learn_plant(plant);
   }
   dds_.lease_s = cfg.lease_s(agents);
-  rec_.transport = o.transport != "auto" ? o.transport : (agents <= cfg.shm_max_agents ? "shm" : "udp");
+  rec_.transport = o.transport != "auto" ? o.transport : "shm";
   // Between hosts data goes over UDP: every participant then announces both kinds of locator
   // (a peer on the same host is reached over shared memory, one on another host over UDP).
   // A secure domain's simple discovery needs every participant's default locators as well.

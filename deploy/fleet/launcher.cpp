@@ -30,7 +30,7 @@ std::string secure_problem(const LaunchOptions& o) {
       return "--secure: faults[] target 'discovery': a secure fleet uses simple discovery and has no "
              "discovery server to " +
              f.action;
-  const int max_agents = fleet::FleetConfig{}.shm_max_agents;
+  const int max_agents = fleet::FleetConfig{}.secure_max_agents;
   if (o.transport == "udp" || o.scenario.robot.agents > max_agents)
     return "--secure: the fleet runs on shared memory (up to " + std::to_string(max_agents) +
            " agents, --transport auto or shm): its simple discovery needs multicast, which the loopback "

@@ -24,9 +24,8 @@ struct LaunchOptions {
   /// Processes the launcher does not start: the user starts them (e.g. on another terminal or
   /// host) with the command printed at launch; the fleet waits for them like for the others.
   std::vector<std::string> external;
-  /// Data transport of the fleet: "shm", "udp" (loopback) or "auto": shared memory up to 64
-  /// agents, UDP above (with 128+ writers into the plant's port, Fast DDS's shared-memory port
-  /// lock times out on two cores and aborts the plant with a boost interprocess exception).
+  /// Data transport of the fleet: "shm", "shm+udp", "udp" (loopback) or "auto": shared memory
+  /// on one host, shared memory and UDP on several hosts or on a secure domain.
   std::string transport = "auto";
   long long chaos_seed = -1;  ///< recorded in the summary when the faults came from --chaos
   /// A secure domain (deploy/fleet/secure_domain.hpp): a private CA, one certificate and

@@ -1,5 +1,5 @@
 // Scale test (ctest label `scale`, part of `deploy/maptr test`): a 64-agent fleet, 68 processes
-// plus the discovery server, for 2 simulated seconds.
+// plus the discovery server, for 2 simulated seconds, its data on shared memory.
 #include <gtest/gtest.h>
 
 #include "tests/integration/fleet_runner.hpp"
@@ -16,6 +16,7 @@ TEST(Fleet, SixtyFourAgentProcessesJoinAndFinish) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.summary["status"], "ok");
   EXPECT_EQ(r.summary["ticks"], 200);
+  EXPECT_EQ(r.summary["transport"], "shm");  // data on shared memory at every size
   // Every one of the 68 processes announced itself, ran the lock-step and ended cleanly.
   ASSERT_EQ(r.summary["processes"].size(), 68u);
   for (const auto& p : r.summary["processes"]) EXPECT_EQ(p["exit_code"].get<int>(), 0) << p.dump();
