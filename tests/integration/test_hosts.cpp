@@ -5,8 +5,10 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <map>
 #include <set>
 
+#include "records/assignments.hpp"
 #include "tests/integration/fleet_runner.hpp"
 
 using namespace maptr::testing;
@@ -102,7 +104,10 @@ TEST_F(Hosts, KillingAHostWithAgentsOfBothSidesKeepsTheRobotGoing) {
   pid_t pid = 0;
   const std::string out = tmp.path() + "/run";
   const auto r =
-      run_hosts(run_args(out, {"--agents", "16", "--duration", "40", "--hosts", "3", "--kill-host", "h2@20"}),
+      // The agents that drive at 20 s (L6, L7, R6, R7 in this deterministic run) are put on h2,
+      // beside those the default placement puts there: its loss takes drivers of both sides.
+      run_hosts(run_args(out, {"--agents", "16", "--duration", "40", "--hosts", "3", "--kill-host", "h2@20",
+                               "--place", "L6=h2", "--place", "L7=h2", "--place", "R6=h2", "--place", "R7=h2"}),
                 out, 600, pid);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto& s = r.summary;
@@ -115,6 +120,30 @@ TEST_F(Hosts, KillingAHostWithAgentsOfBothSidesKeepsTheRobotGoing) {
   const auto procs = on_host(s, "h2");
   EXPECT_TRUE(std::any_of(procs.begin(), procs.end(), [](auto& n) { return n[0] == 'L'; }));
   EXPECT_TRUE(std::any_of(procs.begin(), procs.end(), [](auto& n) { return n[0] == 'R'; }));
+  // The groups reallocate: agents of h2 drive on both sides when it is lost; once the loss is
+  // detected no assignment names one of them, and each side ends with agents driving.
+  const double kill_s = 20.0, detected = f["detected_s"].get<double>();
+  const auto rows = maptr::records::read_assignments(out + "/assignments.csv");
+  auto drives = [](const maptr::records::AssignmentRecord& a, const std::string& name) {
+    return name[0] == a.side && a.driving.at(static_cast<std::size_t>(std::stoi(name.substr(1)))) == '1';
+  };
+  std::map<char, std::string> last, at_kill;
+  std::map<char, int> changes_after;
+  for (const auto& a : rows) {
+    if (a.t_s < kill_s) at_kill[a.side] = a.driving;
+    if (a.t_s > detected) ++changes_after[a.side];
+    last[a.side] = a.driving;
+    if (a.t_s <= detected) continue;
+    for (const auto& name : procs)
+      EXPECT_FALSE(drives(a, name)) << name << " of the lost host drives at t " << a.t_s;
+  }
+  for (char side : {'L', 'R'}) {
+    const maptr::records::AssignmentRecord before{kill_s, side, at_kill[side]};
+    EXPECT_TRUE(std::any_of(procs.begin(), procs.end(), [&](auto& n) { return drives(before, n); }))
+        << side << ": no agent of h2 drives at the loss (" << at_kill[side] << ")";
+    EXPECT_GE(changes_after[side], 1) << side << " did not reallocate";
+    EXPECT_NE(last[side].find('1'), std::string::npos) << side << " ends with no agent driving";
+  }
 }
 
 TEST_F(Hosts, PartitionedHostRejoinsAfterTheHeal) {
@@ -143,8 +172,11 @@ TEST_F(Hosts, ProcessOfALostHostRestartsElsewhereThroughTheOtherDiscoveryServers
   const auto& s = r.summary;
   EXPECT_EQ(s["status"], "ok");
   EXPECT_TRUE(rejoined(s, "L2"));
-  for (const auto& p : s["processes"])
-    if (p["name"] == "L2") EXPECT_NE(p["host"], "h2") << p.dump();
+  for (const auto& p : s["processes"]) {
+    if (p["name"] == "L2") {
+      EXPECT_NE(p["host"], "h2") << p.dump();
+    }
+  }
 }
 
 TEST_F(Hosts, NothingIsLeftAfterTheLauncherIsKilled) {
