@@ -1,7 +1,5 @@
 #include "deploy/fleet/discovery.hpp"
 
-#include "comm/dds.hpp"
-
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -11,10 +9,12 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+
+#include "comm/dds.hpp"
+#include "comm/udp_ports.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -62,37 +62,11 @@ int free_udp_port() {
   return ntohs(a.sin_port);
 }
 
-bool udp_port_bound_by(pid_t pid, int port) {
-  // /proc/PID/net/udp lists the UDP sockets of PID's network namespace, one a line:
-  // "sl local_address rem_address st tx:rx tr:when retrnsmt uid timeout inode ...", the address
-  // as HEXIP:HEXPORT. The socket is PID's own when one of its descriptors links to its inode.
-  std::set<std::string> inodes;
-  std::ifstream f("/proc/" + std::to_string(pid) + "/net/udp");
-  std::string line;
-  std::getline(f, line);
-  while (std::getline(f, line)) {
-    std::istringstream in(line);
-    std::string slot, local, remote, state, queues, timer, retransmits, uid, timeout, inode;
-    in >> slot >> local >> remote >> state >> queues >> timer >> retransmits >> uid >> timeout >> inode;
-    const auto colon = local.find(':');
-    if (colon != std::string::npos && std::stoi(local.substr(colon + 1), nullptr, 16) == port)
-      inodes.insert("socket:[" + inode + "]");
-  }
-  if (inodes.empty()) return false;
-  std::error_code ec;
-  for (const auto& fd : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec)) {
-    std::error_code link_ec;
-    const auto target = std::filesystem::read_symlink(fd.path(), link_ec);
-    if (!link_ec && inodes.count(target.string())) return true;
-  }
-  return false;
-}
-
 int host_discovery_port(int domain) { return kHostDiscoveryPortBase + domain; }
 
 DiscoveryServer::DiscoveryServer(const std::string& binary, const std::string& run_dir, int domain,
-                                 double listen_s, double restart_delay_s, const std::string& servers, int index,
-                                 const Child& host_like, bool netns)
+                                 double listen_s, double restart_delay_s, const std::string& servers,
+                                 int index, const Child& host_like, bool netns)
     : run_dir_(run_dir),
       port_(host_discovery_port(domain)),
       listen_s_(listen_s),
@@ -135,7 +109,7 @@ bool DiscoveryServer::start(const Environment& env, ParticipantIds& ids) {
     // Read from /proc, never probed by binding: a probe holding the port for a moment makes the
     // server's own bind fail ("wasn't able to allocate the specified listening port").
     // Before its exec the child still holds what it inherited: the process must be the server.
-    if (runs_binary(c_.pid, c_.binary) && udp_port_bound_by(c_.pid, port_)) return true;
+    if (runs_binary(c_.pid, c_.binary) && comm::udp_port_bound_by(c_.pid, port_)) return true;
     int st = 0;
     if (waitpid(c_.pid, &st, WNOHANG) == c_.pid) {
       c_.running = false;
@@ -161,8 +135,8 @@ void DiscoveryServer::start_or_throw(const Environment& env, ParticipantIds& ids
     c_.args[1] = address_;
   }
   throw std::runtime_error("the discovery server did not start on " + address_ + ": " +
-                           last_line(run_dir_ + "/logs/" + c_.name + ".stderr") + " (see " + run_dir_ + "/logs/" +
-                           c_.name + ".stderr)");
+                           last_line(run_dir_ + "/logs/" + c_.name + ".stderr") + " (see " + run_dir_ +
+                           "/logs/" + c_.name + ".stderr)");
 }
 
 bool DiscoveryServer::on_exit(const Exit& e, bool expected) {

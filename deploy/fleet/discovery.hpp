@@ -15,8 +15,6 @@ namespace maptr::deploy::fleet {
 
 /// A free UDP port on 127.0.0.1 (throws std::runtime_error if there is none).
 int free_udp_port();
-/// True once process `pid` itself holds a UDP socket bound to `port` (in its network namespace).
-bool udp_port_bound_by(pid_t pid, int port);
 /// The discovery port of every server of a fleet on several hosts, on DDS domain `domain`.
 int host_discovery_port(int domain);
 

@@ -1,8 +1,5 @@
 #include "deploy/top/fleet_reader.hpp"
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -14,6 +11,7 @@
 
 #include "comm/fleet_guid.hpp"
 #include "comm/shm_files.hpp"
+#include "comm/udp_ports.hpp"
 #include "config/scenario.hpp"
 #include "idl/maptrPubSubTypes.h"
 
@@ -81,18 +79,6 @@ dds::DataReaderQos watch_qos(int depth) {
 /// RTPS unicast ports of participant `id`: metatraffic d0 + 2 id + d1 (10), user d0 + 2 id + d3 (11).
 constexpr int kMetatrafficOffset = 10, kUserOffset = 11, kPortsPerId = 2;
 
-bool udp_port_free(int port) {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  if (fd < 0) return false;
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
-  close(fd);
-  return ok;
-}
-
 /// A participant id of `domain` whose unicast ports are free, searched from the highest id
 /// down. Fast DDS would pick the lowest free id itself, but a fleet holds the lowest ids (and
 /// a large one more than Fast DDS's 100 port mutations skip); its restarts move up one window of
@@ -100,8 +86,8 @@ bool udp_port_free(int port) {
 int free_participant_id(int domain) {
   const int base = comm::rtps_domain_port_base(domain);
   for (int id = comm::rtps_max_participant_id(domain); id > 0; --id)
-    if (udp_port_free(base + kMetatrafficOffset + kPortsPerId * id) &&
-        udp_port_free(base + kUserOffset + kPortsPerId * id))
+    if (!comm::udp_port_listed(base + kMetatrafficOffset + kPortsPerId * id) &&
+        !comm::udp_port_listed(base + kUserOffset + kPortsPerId * id))
       return id;
   throw std::runtime_error("no free DDS participant id on domain " + std::to_string(domain));
 }

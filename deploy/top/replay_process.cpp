@@ -1,11 +1,8 @@
 #include "deploy/top/replay_process.hpp"
 
-#include <arpa/inet.h>
 #include <fcntl.h>
-#include <netinet/in.h>
 #include <signal.h>
 #include <sys/prctl.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +13,7 @@
 #include <vector>
 
 #include "comm/shm_files.hpp"
+#include "comm/udp_ports.hpp"
 
 extern char** environ;
 
@@ -30,28 +28,14 @@ constexpr int kMulticastOffset = 0, kMetatrafficOffset = 10, kUserOffset = 11, k
 constexpr int kProbedIds = 4;
 constexpr auto kReapPoll = std::chrono::milliseconds(20);
 
-/// True when a UDP socket can bind `port` on `address` (without SO_REUSEADDR, so a port that
-/// Fast DDS holds with SO_REUSEADDR, as its multicast ports, counts as taken too).
-bool udp_port_free(uint32_t address, int port) {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  if (fd < 0) return false;
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<uint16_t>(port));
-  a.sin_addr.s_addr = htonl(address);
-  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
-  close(fd);
-  return ok;
-}
-
 }  // namespace
 
 bool domain_in_use(int domain) {
   const int base = comm::rtps_domain_port_base(domain);
-  if (!udp_port_free(INADDR_ANY, base + kMulticastOffset)) return true;
+  if (comm::udp_port_listed(base + kMulticastOffset)) return true;
   for (int id = 0; id < kProbedIds; ++id)
     for (int offset : {kMetatrafficOffset, kUserOffset})
-      if (!udp_port_free(INADDR_ANY, base + offset + kPortsPerId * id)) return true;
+      if (comm::udp_port_listed(base + offset + kPortsPerId * id)) return true;
   return false;
 }
 

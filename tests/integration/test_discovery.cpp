@@ -8,12 +8,13 @@
 
 #include <filesystem>
 
+#include "comm/udp_ports.hpp"
 #include "deploy/fleet/discovery.hpp"
 #include "tests/integration/fleet_runner.hpp"
 
+using maptr::comm::udp_port_bound_by;
 using maptr::deploy::fleet::DiscoveryServer;
 using maptr::deploy::fleet::ParticipantIds;
-using maptr::deploy::fleet::udp_port_bound_by;
 using maptr::testing::private_domain;
 using maptr::testing::TempDir;
 
@@ -39,7 +40,8 @@ struct Squatter {
 TEST(DiscoveryServer, APortTakenBeforeTheServerBindsItIsReplacedByAFreshOne) {
   TempDir tmp;
   std::filesystem::create_directories(tmp.path() + "/logs");
-  DiscoveryServer ds(std::string(MAPTR_BIN_DIR) + "/maptr_discovery", tmp.path(), private_domain(), 30.0, 1.0);
+  DiscoveryServer ds(std::string(MAPTR_BIN_DIR) + "/maptr_discovery", tmp.path(), private_domain(), 30.0,
+                     1.0);
   const int chosen = ds.port();
   Squatter squatter(chosen);
   ASSERT_GE(squatter.fd, 0) << "port " << chosen << " was taken before the test could take it";
