@@ -17,12 +17,15 @@ struct FleetConfig {
   /// ... on a secure domain, where every pair of participants runs an authentication handshake
   /// and a key exchange, and a start storm on two cores leaves some pairs unmatched.
   std::size_t secure_wave_size = 4;
-  /// On a secure domain, processes still not ready this long after the last progress of
-  /// discovery (a process ready, a wave started) are started again with fresh participant ids
-  /// (a pair whose key exchange was lost never matches otherwise), s; discovery may take this
-  /// many times its plain timeout.
+  /// Processes still not ready this long after the last progress of discovery (a process
+  /// ready, a wave started) are started again with fresh participant ids: on a secure domain a
+  /// pair whose key exchange was lost never matches otherwise; on a large plain fleet a few
+  /// processes were seen never to be matched by the launcher. s; a secure discovery may take
+  /// secure_discovery_factor times the plain timeout.
   double secure_rematch_s = 12.0;
   double secure_discovery_factor = 2.0;
+  /// ... on a plain domain: max(rematch_min_s, one lease).
+  double rematch_min_s = 20.0;
   /// The next wave starts when the previous one is ready, or after this wall time, s.
   double wave_wait_s = 20.0;
   /// The discovery server must listen on its port within this wall time after its start, s.
@@ -67,6 +70,10 @@ struct FleetConfig {
     return discovery_timeout_base_s + discovery_timeout_per_agent_s * agents;
   }
   double lease_s(int agents) const { return std::max(lease_min_s, lease_per_agent_s * agents); }
+  /// Wall time without progress of discovery after which the unready processes start again, s.
+  double rematch_s(int agents, bool secure) const {
+    return secure ? secure_rematch_s : std::max(rematch_min_s, lease_s(agents));
+  }
   double restart_ready_s(int agents) const {
     return restart_ready_base_s + restart_ready_per_agent_s * agents;
   }

@@ -300,8 +300,9 @@ void Fleet::rematch_unready() {
     stop_process(c->pid, cfg_.end_term_s);
     c->running = false;
     spawn_child(*c);
-    log_.warn("secure domain: {} did not match the fleet within {:.0f} s; started again (pid {})", c->name,
-              cfg_.secure_rematch_s, c->pid);
+    rec_.rematched.push_back(c->name);
+    log_.warn("{} did not match the fleet within {:.0f} s of discovery's last progress; started again (pid {})",
+              c->name, cfg_.rematch_s(sc_.robot.agents, secure()), c->pid);
   }
   write_fleet();
   last_progress_ = Clock::now();
@@ -326,7 +327,7 @@ bool Fleet::discover() {
       last_progress_ = Clock::now();
       log_.info("launched agents up to {} of {}", r.end - kControllers, kids_.size() - kControllers);
     }
-    if (secure() && since(last_progress_) > cfg_.secure_rematch_s) rematch_unready();
+    if (since(last_progress_) > cfg_.rematch_s(sc_.robot.agents, secure())) rematch_unready();
     bool early_death = false;
     for (std::size_t i = 0; i < waves_->started(); ++i)
       if (!kids_[i].running && !kids_[i].external) early_death = true;

@@ -145,6 +145,7 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   add_run_figures(s, plant, r);
   s["discovery_s"] = r.discovery_s;
   s["discovery_server_restarts"] = r.discovery_restarts;
+  s["discovery_rematched"] = r.rematched;
   s["transport"] = r.transport;
   nlohmann::json failures = r.failures;
   const nlohmann::json plant_events = plant.value("membership_events", nlohmann::json::array());

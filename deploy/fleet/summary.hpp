@@ -19,6 +19,7 @@ struct RunRecord {
   double discovery_s = 0.0;   ///< wall time until every process was ready, s
   double run_wall_s = 0.0;    ///< wall time from the start to the plant's end, s
   int discovery_restarts = 0;
+  std::vector<std::string> rematched;  ///< processes started again during discovery (not ready in time)
   std::string transport;                              ///< "shm" or "udp"
   long long chaos_seed = -1;                          ///< recorded when >= 0
   PlantState last_tick;                               ///< the plant's last tick the launcher saw
