@@ -1,11 +1,13 @@
 #include "comm/process.hpp"
 
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
 
+#include <CLI/CLI.hpp>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 namespace maptr::comm {
@@ -64,7 +66,26 @@ std::shared_ptr<spdlog::logger> make_logger(const ProcessArgs& a) {
 
 namespace maptr::comm {
 
+namespace {
+
+/// True when the MAPTR_TEST_SILENT_ONCE hook names this process and its file is not there yet
+/// (the file is then created).
+bool silenced_once(const std::string& name) {
+  const char* hook = std::getenv(kTestSilentOnceEnv);
+  if (!hook) return false;
+  const std::string h = hook;
+  const auto colon = h.find(':');
+  if (colon == std::string::npos || h.substr(0, colon) != name) return false;
+  const std::string path = h.substr(colon + 1);
+  if (std::ifstream(path).good()) return false;
+  std::ofstream(path) << name << "\n";
+  return true;
+}
+
+}  // namespace
+
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind) {
+  if (silenced_once(name)) return;
   msg::NodeReady r;
   r.name(name);
   r.kind(kind);

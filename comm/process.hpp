@@ -15,9 +15,9 @@
 namespace maptr::comm {
 
 struct ProcessArgs {
-  std::string config;     ///< resolved scenario file
-  std::string run_dir;    ///< results folder
-  std::string name;       ///< process name (L3, group-L, central, plant)
+  std::string config;   ///< resolved scenario file
+  std::string run_dir;  ///< results folder
+  std::string name;     ///< process name (L3, group-L, central, plant)
   DdsOptions dds;
   config::Scenario scenario;
 };
@@ -37,12 +37,17 @@ std::atomic<bool>& stop_flag();
 
 namespace maptr::comm {
 
-/// Publishes this process's NodeReady (once every needed endpoint is matched).
+/// Test hook (environment): "NAME:PATH" makes process NAME withhold its NodeReady while the
+/// file PATH does not exist, and create it: the first start of NAME never reports ready.
+inline constexpr const char* kTestSilentOnceEnv = "MAPTR_TEST_SILENT_ONCE";
+
+/// Publishes this process's NodeReady (once every needed endpoint is matched), unless the
+/// MAPTR_TEST_SILENT_ONCE hook withholds it.
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind);
 
 /// Follows the plant's liveliness on a reader of its ticks. The plant counts as lost once a
-/// tick of it was received, then it was reported gone (lease expired or writer unmatched) and not heard from again
-/// for `grace_s` of wall time: a liveliness flap of a live but starved plant is not a loss.
+/// tick of it was received, then it was reported gone (lease expired or writer unmatched) and not heard from
+/// again for `grace_s` of wall time: a liveliness flap of a live but starved plant is not a loss.
 class PlantWatch {
  public:
   explicit PlantWatch(double grace_s) : grace_(grace_s) {}

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <tuple>
@@ -305,4 +306,22 @@ TEST(Faults, PausedProcessesAreOutFromTheirPauseGateAndBackAtTheirResumeGateInEv
     else
       EXPECT_EQ(s["trace_sha256"], hash) << "a pause and its resume act at the same tick in every run";
   }
+}
+
+TEST(Faults, AProcessThatNeverReportsReadyIsStartedAgainDuringDiscovery) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run", marker = tmp.path() + "/L3-silenced";
+  // The first start of L3 withholds its NodeReady; the launcher sees discovery make no progress
+  // and starts L3 again, which then reports ready. Nothing here races the simulation.
+  setenv("MAPTR_TEST_SILENT_ONCE", ("L3:" + marker).c_str(), 1);
+  auto r = run_cli(run_args(out, {"--duration", "2"}), out, 300);
+  unsetenv("MAPTR_TEST_SILENT_ONCE");
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.summary["status"], "ok");
+  EXPECT_TRUE(std::filesystem::exists(marker)) << "the hook did not silence L3";
+  EXPECT_EQ(r.summary["discovery_rematched"], nlohmann::json::array({"L3"}));
+  EXPECT_TRUE(r.summary["discovery_retry"].is_null()) << r.summary["discovery_retry"].dump();
+  for (const auto& p : r.summary["processes"])
+    EXPECT_EQ(p["starts"].get<int>(), p["name"] == "L3" ? 2 : 1) << p.dump();
 }
