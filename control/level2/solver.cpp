@@ -186,6 +186,36 @@ class Level2Nlp : public Ipopt::TNLP {
   double at_x_ = 0.0, f_x_ = 0.0, f_minus_ = 0.0, f_plus_ = 0.0;
 };
 
+/// The integers the choice compares: floor - kNeighbours .. ceil + kNeighbours of the relaxed
+/// n*, clipped to [1, live], and live itself (when the body is above its reference the speed
+/// loop brakes, J is flat near 0 for small n and Ipopt can stop at n = 1 below a better
+/// n = live). Ipopt did not converge (its n* says nothing): every n in [1, live].
+std::vector<int> integer_candidates(double x, int live, bool converged) {
+  const int k_lo = converged ? std::max(1, static_cast<int>(std::floor(x - kIntegerWiden)) - kNeighbours) : 1;
+  const int k_hi =
+      converged ? std::min(live, static_cast<int>(std::ceil(x + kIntegerWiden)) + kNeighbours) : live;
+  std::vector<int> candidates;
+  for (int k = k_lo; k <= k_hi; ++k) candidates.push_back(k);
+  if (k_hi < live) candidates.push_back(live);
+  return candidates;
+}
+
+/// Among the feasible candidates, the largest objective (ties to the smaller n, as the oracle)
+/// into res.n_active and res.objective; false if none is feasible.
+bool choose_integer(const Level2Problem& p, const std::vector<int>& candidates, Level2Result& res) {
+  bool found = false;
+  for (int k : candidates) {
+    if (!level2_feasible(p, k)) continue;
+    const double j = level2_objective(p, k);
+    if (!found || j > res.objective) {  // strict: ties keep the smaller n
+      res.n_active = k;
+      res.objective = j;
+      found = true;
+    }
+  }
+  return found;
+}
+
 }  // namespace
 
 void Level2SolverConfig::validate() const {
@@ -284,24 +314,8 @@ Level2Result Level2Solver::solve(const Level2Problem& p) {
     x = std::clamp(x, lo, hi);
     res.n_relaxed = x;
 
-    bool found = false;
-    const int k_lo = std::max(1, static_cast<int>(std::floor(x - kIntegerWiden)) - kNeighbours);
-    const int k_hi = std::min(live, static_cast<int>(std::ceil(x + kIntegerWiden)) + kNeighbours);
-    // Every live agent is a candidate too: when the body is above its reference the speed loop
-    // brakes, J is flat near 0 for small n and Ipopt can stop at n = 1 below a better n = live.
-    std::vector<int> candidates;
-    for (int k = k_lo; k <= k_hi; ++k) candidates.push_back(k);
-    if (k_hi < live) candidates.push_back(live);
-    for (int k : candidates) {
-      if (!level2_feasible(p, k)) continue;
-      const double j = level2_objective(p, k);
-      if (!found || j > res.objective) {  // strict: ties keep the smaller n
-        res.n_active = k;
-        res.objective = j;
-        found = true;
-      }
-    }
-    if (found) {
+    const bool converged = res.ipopt_status >= 0 && res.ipopt_status < kLevel2NotSolved;
+    if (choose_integer(p, integer_candidates(x, live, converged), res)) {
       res.feasible = true;
       impl_->warm = impl_->nlp->solution();
       impl_->warm.x = x;

@@ -8,7 +8,8 @@
 // relaxed solution and, if Ipopt converged there, its multipliers (a smaller initial barrier
 // parameter); the first solve starts at the middle of [1, live]. Integer choice: floor - 1 to
 // ceil + 1 of the relaxed n* (widened by kIntegerWiden), clipped to [1, live], and live itself
-// (J can be flat near 0 for small n while the body brakes), each kept if feasible; the largest
+// (J can be flat near 0 for small n while the body brakes), or every n in [1, live] when Ipopt
+// did not converge (a failed status; its n* says nothing), each kept if feasible; the largest
 // objective wins, ties to the smaller n (as the oracle exhaustive_level2()). None feasible: every
 // live agent runs (n_active = live). Deterministic; solve_time_ms is diagnostics only.
 // One Ipopt application and one NLP per instance, built at the first solve and re-optimised
