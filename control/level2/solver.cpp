@@ -242,7 +242,7 @@ struct Level2Solver::Impl {
     o->SetStringValue("warm_start_init_point", with_multipliers ? "yes" : "no");
     o->SetNumericValue("mu_init", with_multipliers ? kMuInitWarm : kMuInitCold);
     if (built) {
-      o->SetStringValue("warm_start_same_structure", "yes");  // MUMPS keeps its analysis
+      o->SetStringValue("warm_start_same_structure", "yes");  // keeps the NLP's spaces
       try {
         return static_cast<int>(app->ReOptimizeTNLP(nlp));
       } catch (const Ipopt::IpoptException&) {
