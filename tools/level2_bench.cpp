@@ -2,7 +2,9 @@
 // problems of the `weights` and `voltages` experiments (16 agents, one side, straight line).
 // One solver per problem family, reused and warm-started as in a group process; the speed
 // wanders around the reference (as in cruise) from one decision to the next.
-// Usage: maptr_level2_bench [DECISIONS_PER_FAMILY]   (default 200)
+// Usage: maptr_level2_bench [DECISIONS_PER_FAMILY [WANDER]]   (defaults 200 and 0.03)
+// WANDER: relative amplitude of the speed's wander around the reference (larger: more decisions
+// in the braking and clamping regions, where J has several local maxima).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,8 +27,8 @@ struct Family {
   double mass_kg, speed_mps, battery_V;
 };
 
-/// Relative amplitude of the speed's wander around the reference from decision to decision.
-constexpr double kWander = 0.03;
+/// Default relative amplitude of the speed's wander around the reference.
+constexpr double kDefaultWander = 0.03;
 
 /// CPU time of the calling thread, ms (what the solve costs, whatever else the machine runs).
 double thread_cpu_ms() {
@@ -49,6 +51,12 @@ int main(int argc, char** argv) {
                  argv[1]);
     return 2;
   }
+  char* end = nullptr;
+  const double wander = argc > 2 ? std::strtod(argv[2], &end) : kDefaultWander;
+  if ((argc > 2 && (end == argv[2] || *end != '\0')) || !(wander >= 0.0 && wander < 1.0)) {
+    std::fprintf(stderr, "maptr_level2_bench: WANDER = %s: must be a number in [0, 1)\n", argv[2]);
+    return 2;
+  }
   const std::vector<Family> families = {
       {"weights 13.2 kg", 13.2, 10.0, 23.4}, {"weights 23.2 kg", 23.2, 10.0, 23.4},
       {"weights 33.2 kg", 33.2, 10.0, 23.4}, {"voltages 12 V", 14.4, 8.0, 12.0},
@@ -68,7 +76,7 @@ int main(int argc, char** argv) {
       p.live = p.robot.per_side();
       p.n_other = 0.0;
       p.phidot_ref_L = p.phidot_ref_R = f.speed_mps / p.robot.wheel_radius_m;
-      p.v_x = f.speed_mps * (1.0 + kWander * std::sin(0.7 * i));
+      p.v_x = f.speed_mps * (1.0 + wander * std::sin(0.7 * i));
       p.battery_V = f.battery_V;
       p.validate();
       const double c0 = thread_cpu_ms();

@@ -4,13 +4,16 @@
 //   minimise   -(J(n) - c n)                   J = horizon_efficiency(problem, n), in [0, H]
 //   subject to 1 <= n <= live                  (n real: the relaxed number of active agents)
 //              feasibility_voltage(n) <= V_B   [V]
-// Derivatives from a three-point stencil of rollouts per point; warm start from the previous
-// relaxed solution (the first solve starts at the middle of [1, live]). Integer choice: floor
-// and ceil of the relaxed n* (widened by kIntegerWiden), clipped to [1, live], and live itself
-// (J can be flat near 0 for small n while the body brakes), each kept if feasible; the largest
+// Derivatives from a three-point stencil of rollouts per point. Warm start from the previous
+// relaxed solution and, if Ipopt converged there, its multipliers (a smaller initial barrier
+// parameter); the first solve starts at the middle of [1, live]. Integer choice: floor - 1 to
+// ceil + 1 of the relaxed n* (widened by kIntegerWiden), clipped to [1, live], and live itself
+// (J can be flat near 0 for small n while the body brakes), or every n in [1, live] when Ipopt
+// did not converge (a failed status; its n* says nothing), each kept if feasible; the largest
 // objective wins, ties to the smaller n (as the oracle exhaustive_level2()). None feasible: every
 // live agent runs (n_active = live). Deterministic; solve_time_ms is diagnostics only.
-// One Ipopt application per instance; not thread-safe (one solver per group thread).
+// One Ipopt application and one NLP per instance, built at the first solve and re-optimised
+// after; not thread-safe (one solver per group thread).
 #include <memory>
 
 #include "control/level2/problem.hpp"

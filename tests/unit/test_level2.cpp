@@ -6,20 +6,20 @@
 #include <cstdio>
 #include <vector>
 
-#include "control/level2/solver.hpp"
 #include "control/level2/problem.hpp"
+#include "control/level2/solver.hpp"
 #include "model/motor.hpp"
 
 namespace {
 
-using maptr::control::Level2Result;
-using maptr::control::Level2Solver;
 using maptr::control::exhaustive_level2;
 using maptr::control::feasibility_voltage;
 using maptr::control::horizon_efficiency;
 using maptr::control::level2_feasible;
 using maptr::control::Level2Choice;
 using maptr::control::Level2Problem;
+using maptr::control::Level2Result;
+using maptr::control::Level2Solver;
 using maptr::control::required_voltage;
 
 /// Straight line at the reference speed (steady), left side, other side unknown (symmetric).
@@ -238,3 +238,57 @@ TEST(Level2Solver, WarmStartFollowsSlowlyChangingLoad) {
 }
 
 }  // namespace
+
+namespace {
+
+/// The cruise decisions of the `weights` and `voltages` experiments (16 agents, straight line):
+/// one solver per family, reused and warm-started; the side alternates and the speed wanders
+/// by +-wander around the reference from one decision to the next.
+int cruise_disagreements(int decisions, double wander) {
+  struct Family {
+    double mass_kg, speed_mps, battery_V;
+  };
+  const Family families[] = {{13.2, 10.0, 23.4}, {23.2, 10.0, 23.4}, {33.2, 10.0, 23.4}, {14.4, 8.0, 12.0},
+                             {14.4, 8.0, 16.0},  {14.4, 8.0, 20.0},  {14.4, 8.0, 23.4}};
+  int differ = 0;
+  for (const Family& f : families) {
+    Level2Solver solver;
+    for (int i = 0; i < decisions; ++i) {
+      Level2Problem p = straight(16, f.mass_kg, f.speed_mps, f.battery_V, 1.0 + wander * std::sin(0.7 * i));
+      p.side = i % 2;
+      const Level2Result r = solver.solve(p);
+      const Level2Choice oracle = exhaustive_level2(p);
+      EXPECT_EQ(r.feasible, oracle.feasible);
+      if (r.n_active != oracle.n_active) {
+        ++differ;
+        std::printf("[ Level2 ] cruise differ: m %.1f V %.1f i %d: ipopt %d (%.4f, st %d) oracle %d\n",
+                    f.mass_kg, f.battery_V, i, r.n_active, r.n_relaxed, r.ipopt_status, oracle.n_active);
+      }
+    }
+  }
+  return differ;
+}
+
+}  // namespace
+
+TEST(Level2Solver, WarmStartedCruiseEqualsOracleAtEveryDecision) {
+  // Each solve starts from the previous one's solution and multipliers.
+  EXPECT_EQ(cruise_disagreements(100, 0.03), 0);
+}
+
+TEST(Level2Solver, ReusedSolverRecoversAfterInfeasibleAndFewerLiveAgents) {
+  // One solver (one Ipopt NLP, re-optimised) through a feasible decision, an infeasible one
+  // (Ipopt does not converge there), fewer live agents and back: each as the oracle decides.
+  Level2Solver solver;
+  const Level2Problem normal = straight(16, 20.0, 10.0, 23.4);
+  Level2Problem heavy = straight(16, 2000.0, 10.0, 23.4);
+  Level2Problem failed = normal;
+  failed.live = 5;
+  for (const Level2Problem& p : {normal, heavy, failed, normal, heavy, normal}) {
+    const Level2Result r = solver.solve(p);
+    const Level2Choice oracle = exhaustive_level2(p);
+    EXPECT_EQ(r.feasible, oracle.feasible) << "mass " << p.robot.gross_mass_kg << " live " << p.live;
+    EXPECT_EQ(r.n_active, oracle.n_active) << "mass " << p.robot.gross_mass_kg << " live " << p.live;
+    EXPECT_NE(r.ipopt_status, maptr::control::kLevel2InitFailed);
+  }
+}
