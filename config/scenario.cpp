@@ -77,7 +77,7 @@ void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
   if (!v.IsMap()) c.fail("hosts", describe(v), "must be a mapping");
   for (auto it = v.begin(); it != v.end(); ++it) {
     const std::string key = it->first.Scalar(), path = "hosts." + key;
-    const YAML::Node& x = it->second;
+    const YAML::Node x = it->second;  // a copy: the iterator's value is a temporary
     if (key == "count") {
       int n = 0;
       if (!x.IsScalar() || !YAML::convert<int>::decode(x, n) || n < 1 || n > kMaxHosts)

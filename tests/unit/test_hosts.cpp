@@ -134,6 +134,15 @@ TEST(HostsSection, BadValuesNameTheField) {
       EXPECT_NE(std::string(e.what()).find("hosts."), std::string::npos) << e.what();
     }
   }
+  // An unknown key: the message names it and quotes its value (read from a copy of the node,
+  // not from the iterator's temporary).
+  try {
+    maptr::config::parse_scenario("hosts:\n  tra-ck_m: 3\n", "test");
+    ADD_FAILURE() << "an unknown hosts key accepted";
+  } catch (const maptr::config::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("hosts.tra-ck_m"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("3"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
