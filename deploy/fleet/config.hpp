@@ -55,6 +55,10 @@ struct FleetConfig {
   /// A fleet on several hosts: how long a process cut off from the plant (a partition) waits
   /// for it to come back before it ends, s.
   double host_plant_loss_s = 120.0;
+  /// A run whose plant publishes no new tick and no fault gate for this wall time has stalled
+  /// and is ended (status "aborted: stalled: ..."), s: longer than any wait of the plant itself
+  /// (a fault gate's 120 s, the barrier's deadline) and of a fault gate (restart_ready_s).
+  double stall_s = 180.0;
   /// Period of the progress line, s.
   double progress_period_s = 1.0;
   /// Poll periods of the discovery loop, the run loop and a fault gate's wait.

@@ -229,6 +229,7 @@ void Fleet::run() {
   // Scheduled faults act at the plant's fault gates (the first tick at or after their time,
   // held until they are applied), so that they hit the same tick in every run.
   t_run_ = last_print_ = Clock::now();
+  stall_.start(0.0);
   while (rec_.status == "ok" && !plant_done_) {
     seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.run_poll);
     take_ticks();
@@ -237,11 +238,19 @@ void Fleet::run() {
       learn_secure_plant(h);
       if (!clock_.from_plant(writer_prefix(h))) continue;
       clock_.on_gate(g.t());
+      ++gates_seen_;
       open_gate(g);
+      stall_.held_until(since(t_run_));  // the launcher held the run while it answered the gate
     }
     announce_restarted();
     reap(false);
     if (interrupted().load()) rec_.status = "aborted: interrupted";
+    stall_.observe(clock_.state().t, gates_seen_, since(t_run_));
+    if (rec_.status == "ok" && !plant_done_ && stall_.stalled(since(t_run_))) {
+      rec_.status = stalled_status(stall_);
+      log_.error("the run stalled: no tick or fault gate from the plant for {:.0f} s (last at t={:.2f} s); ending it",
+                 stall_.idle_s(since(t_run_)), clock_.state().t);
+    }
     print_progress();
   }
   rec_.run_wall_s = since(t_run_);
