@@ -56,7 +56,7 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 struct FleetRun {
   int exit_code = -1;
   bool timed_out = false;
-  bool killed = false;  ///< the launcher did not end after SIGTERM and was killed
+  bool killed = false;             ///< the launcher did not end after SIGTERM and was killed
   std::set<std::string> segments;  ///< shared-memory segments the fleet's processes mapped
   double wall_s = 0.0;
   nlohmann::json summary = nlohmann::json::object();
@@ -200,8 +200,8 @@ std::string check_segments(const std::set<std::string>& own) {
     fs::remove(fs::path(kShmDir) / s, ec);
     fs::remove(fs::path(kShmDir) / (s + "_el"), ec);
   }
-  return std::to_string(left.size()) + " shared-memory segment(s) of the fleet left without owner (removed):" +
-         names;
+  return std::to_string(left.size()) +
+         " shared-memory segment(s) of the fleet left without owner (removed):" + names;
 }
 
 /// The soak's scenario with `faults`, written where its fleet's `maptr run` reads it.
@@ -264,8 +264,8 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
   std::vector<std::pair<std::string, std::string>> failed;  // (check, why)
   if (r.timed_out) failed.push_back({"timeout", "still running after the fleet timeout"});
   if (r.killed)
-    failed.push_back({"timeout", "the launcher did not end within " + std::to_string(int(kLauncherEndGraceS)) +
-                                     " s of SIGTERM: killed"});
+    failed.push_back({"timeout", "the launcher did not end within " +
+                                     std::to_string(int(kLauncherEndGraceS)) + " s of SIGTERM: killed"});
   if (const auto why = soak::check_status(r.summary); !why.empty()) failed.push_back({"status", why});
   if (const auto why = check_leftovers(dir); !why.empty()) failed.push_back({"processes", why});
   if (const auto why = check_shm(before, count_shm(s.domain)); !why.empty()) failed.push_back({"shm", why});
@@ -285,6 +285,7 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
                         {"status", status},
                         {"exit_code", r.exit_code},
                         {"wall_s", r.wall_s},
+                        {"shm_segments", r.segments.size()},
                         {"faults", kinds},
                         {"distance_m", r.summary.value("distance_m", 0.0)},
                         {"energy_J", r.summary.value("energy_J", 0.0)},

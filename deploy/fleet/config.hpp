@@ -38,6 +38,10 @@ struct FleetConfig {
   /// ones to report ready, s; then the plant goes on.
   double restart_ready_base_s = 30.0;
   double restart_ready_per_agent_s = 0.5;
+  /// A process restarted at a fault gate that has not reported ready within restart_ready_s
+  /// (its discovery lost on a starved machine) is started again this many times, with a fresh
+  /// participant id, each time with the same wait.
+  int restart_unready_retries = 1;
   /// End of a run: wall time the children get to end on their own after a clean run, s.
   double end_clean_s = 10.0;
   /// ... after an aborted run (they have not seen a last tick), s.

@@ -74,7 +74,7 @@ class Fleet {
   void apply_fault(const config::FaultSpec& f, double at_s, const std::string& origin);
   void pause_or_resume(Child* c, pid_t pid, bool pause);
   void open_gate(const msg::FaultGate& g);
-  bool gate_pending(const std::vector<std::string>& killed) const;
+  bool restart_unready(const std::vector<std::string>& restarted);
   void take_ticks();
   void take_commands();
   void print_progress();
