@@ -118,6 +118,9 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--kill-host", a.kill_hosts, "kill every process of a host and cut its link, e.g. h2@20");
   run->add_option("--partition", a.partitions, "cut a host's link at a simulated time, e.g. h2@20");
   run->add_option("--heal", a.heals, "link a cut host again, e.g. h2@30");
+  run->add_option("--stall-timeout", a.stall_timeout_s,
+                  "end the run as stalled after this many wall seconds without a tick (default 180)")
+      ->check(CLI::Range(1.0, 86400.0));
   run->add_flag("--quiet", a.quiet, "no progress lines");
   return run;
 }
@@ -184,6 +187,7 @@ int cmd_run(const RunArgs& a, const std::string& bin_dir) {
   o.chaos_seed = a.chaos;
   o.domain = resolve_domain(a.domain);
   o.secure = a.secure;
+  o.stall_s = a.stall_timeout_s;
   for (const std::string& why : {domain_problem(o.domain, o.scenario.robot.agents), secure_problem(o)})
     if (!why.empty()) {
       std::cerr << "maptr: " << why << "\n";

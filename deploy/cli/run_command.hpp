@@ -22,6 +22,7 @@ struct RunArgs {
   int hosts = 0;  ///< --hosts N (0: the scenario's)
   long long chaos = -1;
   std::string transport = "auto";
+  double stall_timeout_s = 0.0;  ///< --stall-timeout S (0: the launcher's default)
 };
 
 /// The `run` subcommand and its options, bound to `a`.

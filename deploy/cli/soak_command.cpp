@@ -21,6 +21,7 @@
 #include "deploy/cli/paths.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/launcher.hpp"
+#include "deploy/fleet/shm_segments.hpp"
 #include "deploy/fleet/soak.hpp"
 #include "deploy/fleet/summary.hpp"
 #include "model/params.hpp"
@@ -35,6 +36,12 @@ constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2;
 /// Wall time a fleet's processes get to be gone after its launcher ended, s.
 constexpr double kLeftoverGraceS = 3.0;
 constexpr std::chrono::milliseconds kPoll{100};
+/// Wall time a launcher gets to end its fleet after SIGTERM before it is killed, s (its own end
+/// of a fleet takes at most about 25 s).
+constexpr double kLauncherEndGraceS = 60.0;
+/// Period of the samples of the shared-memory segments the fleet's processes map, s.
+constexpr double kSegmentSampleS = 0.5;
+constexpr const char* kShmDir = "/dev/shm";
 /// Ports of one DDS domain (the RTPS domain gain): a fleet of up to about 120 participant ids,
 /// restarts included, stays within them.
 constexpr int kDomainPorts = 250;
@@ -49,9 +56,24 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 struct FleetRun {
   int exit_code = -1;
   bool timed_out = false;
+  bool killed = false;             ///< the launcher did not end after SIGTERM and was killed
+  std::set<std::string> segments;  ///< shared-memory segments the fleet's processes mapped
   double wall_s = 0.0;
   nlohmann::json summary = nlohmann::json::object();
 };
+
+std::vector<pid_t> fleet_processes(const std::string& fleet_id);
+
+/// Adds the shared-memory segments mapped by the launcher `launcher` and by the processes of
+/// the fleet it runs in `dir` (from its fleet.json) to `out`.
+void sample_segments(pid_t launcher, const std::string& dir, std::set<std::string>& out) {
+  std::vector<pid_t> pids = {launcher};
+  const nlohmann::json fleet = fleet::read_json_object(dir + "/fleet.json");
+  if (fleet.contains("fleet_id"))
+    for (pid_t p : fleet_processes(std::to_string(fleet.value("fleet_id", 0LL)))) pids.push_back(p);
+  for (pid_t p : pids)
+    for (const auto& s : fleet::segments_mapped_by(p)) out.insert(s);
+}
 
 /// Runs `maptr run yaml --out dir --domain d --quiet` (output to dir.log) and waits for it.
 FleetRun run_fleet(const std::string& bin, const std::string& yaml, const std::string& dir, int domain,
@@ -76,10 +98,19 @@ FleetRun run_fleet(const std::string& bin, const std::string& yaml, const std::s
     _exit(127);
   }
   int st = 0;
+  auto last_sample = Clock::now() - std::chrono::hours(1);
   while (waitpid(pid, &st, WNOHANG) != pid) {
-    if (!r.timed_out && since(t0) > timeout_s) {
+    const soak::Deadline d = soak::fleet_deadline(since(t0), timeout_s, kLauncherEndGraceS);
+    if (d == soak::Deadline::kTerm && !r.timed_out) {
       r.timed_out = true;
       kill(pid, SIGTERM);  // the launcher ends its fleet; its children die with it in any case
+    } else if (d == soak::Deadline::kKill && !r.killed) {
+      r.killed = true;
+      kill(pid, SIGKILL);  // check_leftovers() then kills what is left of the fleet
+    }
+    if (since(last_sample) >= kSegmentSampleS) {
+      sample_segments(pid, dir, r.segments);
+      last_sample = Clock::now();
     }
     std::this_thread::sleep_for(kPoll);
   }
@@ -123,46 +154,54 @@ std::string check_leftovers(const std::string& run_dir) {
     pids += " " + std::to_string(p);
     kill(p, SIGKILL);
   }
+  // Gone for good before the shared-memory checks (a dead owner's locks are free).
+  for (const auto t1 = Clock::now(); !fleet_processes(id).empty() && since(t1) < kLeftoverGraceS;)
+    std::this_thread::sleep_for(kPoll);
   return std::to_string(left.size()) + " process(es) of the fleet left:" + pids;
 }
 
-/// Fast DDS files in /dev/shm: the port files in the soak's domain's own port range, and the
-/// segments whose owner is gone (no process holds the flock on their `_el` file).
+/// Fast DDS port files in /dev/shm in the soak's domain's own port range. (Segments carry no
+/// domain: other fleets on the machine make and leave them too; see check_segments.)
 struct ShmCount {
-  int ports = 0, orphan_segments = 0;
+  int ports = 0;
 };
-
-/// True when no process holds the flock Fast DDS keeps on a live segment's `_el` file.
-bool lock_free(const fs::path& el) {
-  const int fd = ::open(el.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return false;
-  const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
-  ::close(fd);  // releases the lock if we took it
-  return free;
-}
 
 ShmCount count_shm(int domain) {
   ShmCount c;
   const int base = comm::rtps_domain_port_base(domain);
-  for (const auto& e : fs::directory_iterator("/dev/shm")) {
+  for (const auto& e : fs::directory_iterator(kShmDir)) {
     const std::string n = e.path().filename();
     const std::string port = n.rfind("sem.", 0) == 0 ? n.substr(4) : n;
     if (port.rfind("fastrtps_port", 0) == 0) {
       const int p = std::atoi(port.c_str() + 13);
       if (p >= base && p < base + kDomainPorts) ++c.ports;
-    } else if (n.rfind("fastrtps_", 0) == 0 && n.size() > 3 && n.compare(n.size() - 3, 3, "_el") == 0 &&
-               lock_free(e.path())) {
-      ++c.orphan_segments;
     }
   }
   return c;
 }
 
 std::string check_shm(const ShmCount& before, const ShmCount& after) {
-  if (after.ports <= before.ports && after.orphan_segments <= before.orphan_segments) return "";
+  if (after.ports <= before.ports) return "";
   return "/dev/shm grew: domain port files " + std::to_string(before.ports) + " -> " +
-         std::to_string(after.ports) + ", segments without owner " + std::to_string(before.orphan_segments) +
-         " -> " + std::to_string(after.orphan_segments);
+         std::to_string(after.ports);
+}
+
+/// The segments the fleet's processes mapped that are still in /dev/shm without an owner ("" when
+/// none); they are removed, so that the next fleet starts clean.
+std::string check_segments(const std::set<std::string>& own) {
+  std::vector<std::string> left;
+  for (const auto& s : own)
+    if (fleet::segment_orphaned(kShmDir, s)) left.push_back(s);
+  if (left.empty()) return "";
+  std::string names;
+  for (const auto& s : left) {
+    names += " " + s;
+    std::error_code ec;
+    fs::remove(fs::path(kShmDir) / s, ec);
+    fs::remove(fs::path(kShmDir) / (s + "_el"), ec);
+  }
+  return std::to_string(left.size()) +
+         " shared-memory segment(s) of the fleet left without owner (removed):" + names;
 }
 
 /// The soak's scenario with `faults`, written where its fleet's `maptr run` reads it.
@@ -224,9 +263,13 @@ namespace {
 bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, const ShmCount& before) {
   std::vector<std::pair<std::string, std::string>> failed;  // (check, why)
   if (r.timed_out) failed.push_back({"timeout", "still running after the fleet timeout"});
+  if (r.killed)
+    failed.push_back({"timeout", "the launcher did not end within " +
+                                     std::to_string(int(kLauncherEndGraceS)) + " s of SIGTERM: killed"});
   if (const auto why = soak::check_status(r.summary); !why.empty()) failed.push_back({"status", why});
   if (const auto why = check_leftovers(dir); !why.empty()) failed.push_back({"processes", why});
   if (const auto why = check_shm(before, count_shm(s.domain)); !why.empty()) failed.push_back({"shm", why});
+  if (const auto why = check_segments(r.segments); !why.empty()) failed.push_back({"shm", why});
   for (const auto& why : soak::check_wear(r.summary, dir, s.sc.robot.per_side()))
     failed.push_back({"wear", why});
   for (const auto& why : soak::check_band(r.summary, s.reference, s.band)) failed.push_back({"band", why});
@@ -242,6 +285,7 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
                         {"status", status},
                         {"exit_code", r.exit_code},
                         {"wall_s", r.wall_s},
+                        {"shm_segments", r.segments.size()},
                         {"faults", kinds},
                         {"distance_m", r.summary.value("distance_m", 0.0)},
                         {"energy_J", r.summary.value("energy_J", 0.0)},

@@ -126,4 +126,16 @@ int ParticipantIds::take(int base, int starts) {
   return id;
 }
 
+bool gate_pending(const std::vector<Child>& kids, const std::vector<std::string>& killed,
+                  const std::vector<std::string>& restarted) {
+  const auto in = [](const std::vector<std::string>& v, const std::string& n) {
+    return std::find(v.begin(), v.end(), n) != v.end();
+  };
+  for (const auto& c : kids) {
+    if (c.awaiting_ready && c.running && in(restarted, c.name)) return true;
+    if (c.running && in(killed, c.name)) return true;
+  }
+  return false;
+}
+
 }  // namespace maptr::deploy::fleet

@@ -69,6 +69,12 @@ void signal_all(const std::vector<Child>& kids, int sig);
 /// Waits until no child runs or `seconds` have passed, calling reap in between.
 void wait_all(const std::vector<Child>& kids, double seconds, const std::function<void()>& reap);
 
+/// True while a fault gate must hold: a process killed at it still runs, or a process restarted
+/// at it has not reported ready. A process restarted at an earlier gate that never reported
+/// ready does not hold later gates.
+bool gate_pending(const std::vector<Child>& kids, const std::vector<std::string>& killed,
+                  const std::vector<std::string>& restarted);
+
 /// Ends one process: SIGTERM, then SIGKILL after term_s; reaps it.
 void stop_process(pid_t pid, double term_s);
 

@@ -41,6 +41,10 @@ struct FleetConfig {
   /// ones to report ready, s; then the plant goes on.
   double restart_ready_base_s = 30.0;
   double restart_ready_per_agent_s = 0.5;
+  /// A process restarted at a fault gate that has not reported ready within restart_ready_s
+  /// (its discovery lost on a starved machine) is started again this many times, with a fresh
+  /// participant id, each time with the same wait.
+  int restart_unready_retries = 1;
   /// End of a run: wall time the children get to end on their own after a clean run, s.
   double end_clean_s = 10.0;
   /// ... after an aborted run (they have not seen a last tick), s.
@@ -59,6 +63,10 @@ struct FleetConfig {
   /// A fleet on several hosts: how long a process cut off from the plant (a partition) waits
   /// for it to come back before it ends, s.
   double host_plant_loss_s = 120.0;
+  /// A run whose plant publishes no new tick and no fault gate for this wall time has stalled
+  /// and is ended (status "aborted: stalled: ..."), s: longer than any wait of the plant itself
+  /// (a fault gate's 120 s, the barrier's deadline) and of a fault gate (restart_ready_s).
+  double stall_s = 180.0;
   /// Period of the progress line, s.
   double progress_period_s = 1.0;
   /// Poll periods of the discovery loop, the run loop and a fault gate's wait.

@@ -22,6 +22,7 @@
 #include "deploy/fleet/hosts.hpp"
 #include "deploy/fleet/launcher.hpp"
 #include "deploy/fleet/plant_clock.hpp"
+#include "deploy/fleet/stall_watch.hpp"
 #include "deploy/fleet/summary.hpp"
 #include "deploy/fleet/waves.hpp"
 #include "idl/maptrPubSubTypes.h"
@@ -73,7 +74,7 @@ class Fleet {
   void apply_fault(const config::FaultSpec& f, double at_s, const std::string& origin);
   void pause_or_resume(Child* c, pid_t pid, bool pause);
   void open_gate(const msg::FaultGate& g);
-  bool gate_pending(const std::vector<std::string>& killed) const;
+  bool restart_unready(const std::vector<std::string>& restarted);
   void take_ticks();
   void take_commands();
   void print_progress();
@@ -114,6 +115,8 @@ class Fleet {
   std::unique_ptr<ControlFifo> fifo_;
   FaultSchedule schedule_;
   PlantClock clock_;
+  StallWatch stall_{FleetConfig{}.stall_s};
+  long gates_seen_ = 0;
   std::set<std::string> ready_names_;
   Clock::time_point t_launch_, t_run_, last_wave_, last_print_, last_progress_;
   uint64_t seen_ = 0, member_seq_ = 0, control_seq_ = 1;

@@ -144,32 +144,51 @@ void Fleet::pause_or_resume(Child* c, pid_t pid, bool pause) {
   publish_member(*c, pause ? msg::MEMBER_PAUSED : msg::MEMBER_RESUMED);
 }
 
-bool Fleet::gate_pending(const std::vector<std::string>& killed) const {
-  for (const auto& c : kids_) {
-    if (c.awaiting_ready && c.running) return true;
-    if (c.running && std::find(killed.begin(), killed.end(), c.name) != killed.end()) return true;
+bool Fleet::restart_unready(const std::vector<std::string>& restarted) {
+  // A process restarted at this gate that did not report ready in time: ended and started once
+  // more, with the next participant id (the plant still counts it dead and waits for its start).
+  bool any = false;
+  for (auto& c : kids_) {
+    if (!c.awaiting_ready || !c.running ||
+        std::find(restarted.begin(), restarted.end(), c.name) == restarted.end())
+      continue;
+    const pid_t old = c.pid;
+    stop_process(c.pid, cfg_.end_term_s);
+    c.running = false;
+    spawn_child(c);
+    log_.warn(
+        "fault gate: restarted {} (pid {}) did not report ready within {:.0f} s; started again (pid {})",
+        c.name, old, cfg_.restart_ready_s(sc_.robot.agents), c.pid);
+    any = true;
   }
-  return false;
+  return any;
 }
 
 void Fleet::open_gate(const msg::FaultGate& g) {
   // Apply every scheduled fault due at the gate's time, wait until each killed process is
   // reaped (its death published) and each restarted one is ready, then let the plant go on.
-  std::vector<std::string> killed;
+  std::vector<std::string> killed, restarted;
   for (const auto& f : schedule_.due(g.t())) {
     if (f.action == "kill") killed.push_back(f.target);
+    if (f.action == "restart") restarted.push_back(f.target);
     if (config::is_host_action(f.action)) {
       for (const auto& k : apply_host_fault(f, g.t())) killed.push_back(k);
       continue;
     }
     apply_fault(f, g.t(), o_.chaos_seed >= 0 ? "chaos" : "scheduled");
   }
-  const auto t0 = Clock::now();
+  auto t0 = Clock::now();
   const double limit = cfg_.restart_ready_s(sc_.robot.agents);
+  int retries = 0;
   for (;;) {
     reap(false);
     announce_restarted();
-    if (!gate_pending(killed) || interrupted().load() || plant_done_) break;
+    if (!gate_pending(kids_, killed, restarted) || interrupted().load() || plant_done_) break;
+    if (since(t0) > limit && retries < cfg_.restart_unready_retries && restart_unready(restarted)) {
+      ++retries;
+      t0 = Clock::now();
+      continue;
+    }
     if (since(t0) > limit) {
       log_.error(
           "fault gate at t={:.2f} s: a killed process did not end or a restarted one did not report ready "
@@ -229,6 +248,7 @@ void Fleet::run() {
   // Scheduled faults act at the plant's fault gates (the first tick at or after their time,
   // held until they are applied), so that they hit the same tick in every run.
   t_run_ = last_print_ = Clock::now();
+  stall_.start(0.0);
   while (rec_.status == "ok" && !plant_done_) {
     seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.run_poll);
     take_ticks();
@@ -237,11 +257,19 @@ void Fleet::run() {
       learn_secure_plant(h);
       if (!clock_.from_plant(writer_prefix(h))) continue;
       clock_.on_gate(g.t());
+      ++gates_seen_;
       open_gate(g);
+      stall_.held_until(since(t_run_));  // the launcher held the run while it answered the gate
     }
     announce_restarted();
     reap(false);
     if (interrupted().load()) rec_.status = "aborted: interrupted";
+    stall_.observe(clock_.state().t, gates_seen_, since(t_run_));
+    if (rec_.status == "ok" && !plant_done_ && stall_.stalled(since(t_run_))) {
+      rec_.status = stalled_status(stall_);
+      log_.error("the run stalled: no tick or fault gate from the plant for {:.0f} s (last at t={:.2f} s)",
+                 stall_.idle_s(since(t_run_)), clock_.state().t);
+    }
     print_progress();
   }
   rec_.run_wall_s = since(t_run_);

@@ -32,6 +32,9 @@ struct LaunchOptions {
   /// permissions document per process in RUN_DIR/security; simple discovery (no discovery
   /// server: Fast DDS 2.9 has none with DDS Security).
   bool secure = false;
+  /// Wall time without a new tick or fault gate from the plant after which the run is ended as
+  /// stalled, s; 0: FleetConfig::stall_s.
+  double stall_s = 0.0;
 };
 
 /// Why options `o` cannot run together (e.g. --secure with a fault of the discovery server it

@@ -4,8 +4,14 @@
 
 #include "comm/dds.hpp"
 #include "comm/shm_files.hpp"
+#include "deploy/fleet/shm_segments.hpp"
 
 namespace maptr::deploy::fleet {
+
+namespace {
+/// A segment's lock file younger than this may not be locked by its new owner yet, s.
+constexpr double kSegmentMinAgeS = 2.0;
+}  // namespace
 
 void clean_shm_before_run(spdlog::logger& log) {
   if (const int stale = comm::clean_stale_shm(); stale > 0)
@@ -18,6 +24,10 @@ void clean_shm_after_run(int domain, int highest_participant_id, int ds_port, sp
   if (const int removed = comm::clean_stale_shm(own); removed > 0)
     log.info("removed {} unused Fast DDS shared-memory ports from /dev/shm (this fleet's and older ones)",
              removed);
+  // `fastdds shm clean` (above) also removes segments without owner, but it is a Python
+  // program with a bounded wait: on a loaded machine it may be cut short.
+  if (const auto gone = remove_orphan_segments("/dev/shm", kSegmentMinAgeS); !gone.empty())
+    log.info("removed {} Fast DDS shared-memory segments without owner from /dev/shm", gone.size());
 }
 
 }  // namespace maptr::deploy::fleet

@@ -1,7 +1,8 @@
 #pragma once
 // Fast DDS shared-memory ports in /dev/shm around a fleet run: before it, the unused ones that
 // earlier fleets left behind (same domain, same port numbers can keep this fleet from
-// discovering itself); after it, this fleet's own ports whatever their age, with older ones.
+// discovering itself); after it, this fleet's own ports whatever their age, with older ones,
+// and the segments whose owner is gone (deploy/fleet/shm_segments.hpp).
 #include <spdlog/logger.h>
 
 namespace maptr::deploy::fleet {

@@ -44,7 +44,14 @@ std::map<std::string, int> faults_by_kind(const nlohmann::json& summary) {
   return n;
 }
 
+Deadline fleet_deadline(double elapsed_s, double timeout_s, double grace_s) {
+  if (elapsed_s > timeout_s + grace_s) return Deadline::kKill;
+  if (elapsed_s > timeout_s) return Deadline::kTerm;
+  return Deadline::kNone;
+}
+
 std::string check_status(const nlohmann::json& summary) {
+  if (!summary.contains("status")) return "no status: summary.json is missing or unreadable";
   const std::string st = summary.value("status", "");
   if (st == "ok") return "";
   const std::string degraded = "degraded: ";

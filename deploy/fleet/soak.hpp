@@ -37,6 +37,12 @@ std::vector<config::FaultSpec> fleet_faults(unsigned seed, int index, const conf
 /// summary's failures.
 std::map<std::string, int> faults_by_kind(const nlohmann::json& summary);
 
+/// What the soak does to a fleet's launcher still running elapsed_s after its start: nothing,
+/// SIGTERM once past timeout_s (the launcher ends its fleet), SIGKILL once past timeout_s +
+/// grace_s (a launcher that does not end; the soak then kills the fleet's processes itself).
+enum class Deadline { kNone, kTerm, kKill };
+Deadline fleet_deadline(double elapsed_s, double timeout_s, double grace_s);
+
 /// "" when the status is ok or "degraded: <reason>", else why it fails.
 std::string check_status(const nlohmann::json& summary);
 
