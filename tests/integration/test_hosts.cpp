@@ -153,7 +153,9 @@ TEST_F(Hosts, PartitionedHostRejoinsAfterTheHeal) {
   const auto r = run_hosts(run_args(out, {"--agents", "8", "--duration", "40", "--hosts", "3", "--partition",
                                           "h2@10", "--heal", "h2@20"}),
                            out, 600, pid);
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // On failure: who left and came back when, and every process's end.
+  ASSERT_EQ(r.exit_code, 0) << r.output << "\nmembership events: " << r.summary["plant"]["membership_events"].dump()
+                            << "\nprocesses: " << r.summary["processes"].dump();
   const auto& s = r.summary;
   EXPECT_EQ(s["status"], "ok");
   for (const auto& name : on_host(s, "h2")) EXPECT_TRUE(rejoined(s, name)) << name << " did not rejoin";
