@@ -68,6 +68,7 @@ DiscoveryServer::DiscoveryServer(const std::string& binary, const std::string& r
                                  double listen_s, double restart_delay_s, const std::string& servers,
                                  int index, const Child& host_like, bool netns)
     : run_dir_(run_dir),
+      domain_(domain),
       port_(host_discovery_port(domain)),
       listen_s_(listen_s),
       restart_delay_s_(restart_delay_s),
@@ -87,12 +88,17 @@ DiscoveryServer::DiscoveryServer(const std::string& binary, const std::string& r
 
 DiscoveryServer::DiscoveryServer(const std::string& binary, const std::string& run_dir, int domain,
                                  double listen_s, double restart_delay_s)
-    : run_dir_(run_dir), port_(free_udp_port()), listen_s_(listen_s), restart_delay_s_(restart_delay_s) {
-  address_ = "127.0.0.1:" + std::to_string(port_);
+    : run_dir_(run_dir), domain_(domain), listen_s_(listen_s), restart_delay_s_(restart_delay_s) {
   c_.name = "discovery";
   c_.binary = binary;
-  c_.args = {"--address", address_, "--domain", std::to_string(domain)};
+  use_port(free_udp_port());
   if (!std::filesystem::exists(binary)) throw std::runtime_error("missing process binary " + binary);
+}
+
+void DiscoveryServer::use_port(int port) {
+  port_ = port;
+  address_ = "127.0.0.1:" + std::to_string(port);
+  c_.args = {"--address", address_, "--domain", std::to_string(domain_)};
 }
 
 DiscoveryServer::~DiscoveryServer() {
@@ -130,9 +136,7 @@ void DiscoveryServer::start_or_throw(const Environment& env, ParticipantIds& ids
     if (c_.running) kill(c_.pid, SIGKILL), waitpid(c_.pid, nullptr, 0);
     c_.running = false;
     if (!own_port || !exited || attempt >= kStartAttempts) break;
-    port_ = free_udp_port();
-    address_ = "127.0.0.1:" + std::to_string(port_);
-    c_.args[1] = address_;
+    use_port(free_udp_port());
   }
   throw std::runtime_error("the discovery server did not start on " + address_ + ": " +
                            last_line(run_dir_ + "/logs/" + c_.name + ".stderr") + " (see " + run_dir_ +

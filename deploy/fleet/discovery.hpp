@@ -59,9 +59,12 @@ class DiscoveryServer {
 
  private:
   using Clock = std::chrono::steady_clock;
+  /// The server of a fleet on one host listens on 127.0.0.1:port (its address and arguments).
+  void use_port(int port);
   Child c_;
   std::string run_dir_, address_;
-  int port_;
+  int domain_;
+  int port_ = 0;
   double listen_s_, restart_delay_s_;
   int restarts_ = 0;
   int index_ = 0, count_ = 1;  ///< its index in the fleet's list of servers, and their number

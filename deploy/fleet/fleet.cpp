@@ -283,11 +283,21 @@ std::string Fleet::not_ready() const {
   return missing;
 }
 
+pid_t Fleet::start_again(Child& c) {
+  // SIGTERM, not SIGKILL: a process killed inside a shared-memory operation leaves its lock held
+  // and the others' transport aborts.
+  const pid_t old = c.pid;
+  stop_process(c.pid, cfg_.end_term_s);
+  c.running = false;
+  spawn_child(c);
+  write_fleet();
+  return old;
+}
+
 void Fleet::rematch_unready() {
   // Before the run starts: end and start again, with the next participant id of its window,
   // every started process that is not ready; the plant (ready once it matched everyone) only
-  // when it is the last one. SIGTERM, not SIGKILL: a process killed inside a shared-memory
-  // operation leaves its lock held and the others' transport aborts.
+  // when it is the last one.
   std::vector<Child*> unready;
   for (std::size_t i = 0; i < waves_->started(); ++i) {
     Child& c = kids_[i];
@@ -298,14 +308,11 @@ void Fleet::rematch_unready() {
         std::remove_if(unready.begin(), unready.end(), [](Child* c) { return c->kind == ChildKind::kPlant; }),
         unready.end());
   for (Child* c : unready) {
-    stop_process(c->pid, cfg_.end_term_s);
-    c->running = false;
-    spawn_child(*c);
+    start_again(*c);
     rec_.rematched.push_back(c->name);
     log_.warn("{} did not match the fleet within {:.0f} s of discovery's last progress; started again (pid {})",
               c->name, cfg_.rematch_s(sc_.robot.agents, secure()), c->pid);
   }
-  write_fleet();
   last_progress_ = Clock::now();
 }
 

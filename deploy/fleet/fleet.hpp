@@ -60,6 +60,9 @@ class Fleet {
   void stop_recorder();
   void make_secure_domain();
   void rematch_unready();
+  /// Ends `c` (SIGTERM, then SIGKILL) and starts it again with its next participant id; writes
+  /// fleet.json. Returns the pid it had.
+  pid_t start_again(Child& c);
   void learn_secure_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
   bool secure() const { return o_.secure; }
   void write_fleet() const;

@@ -152,10 +152,7 @@ bool Fleet::restart_unready(const std::vector<std::string>& restarted) {
     if (!c.awaiting_ready || !c.running ||
         std::find(restarted.begin(), restarted.end(), c.name) == restarted.end())
       continue;
-    const pid_t old = c.pid;
-    stop_process(c.pid, cfg_.end_term_s);
-    c.running = false;
-    spawn_child(c);
+    const pid_t old = start_again(c);
     log_.warn(
         "fault gate: restarted {} (pid {}) did not report ready within {:.0f} s; started again (pid {})",
         c.name, old, cfg_.restart_ready_s(sc_.robot.agents), c.pid);
