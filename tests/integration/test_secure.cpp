@@ -163,7 +163,10 @@ TEST(Secure, ACertifiedParticipantCannotWriteTicksAndItsRepliesUnderAnotherNameA
     comm::MatchCounter m;
     auto* w =
         p.writer(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &m);
-    ASSERT_TRUE(wait_for([&] { return m.matched() >= 1; }, 60)) << "the plant's reply reader did not match";
+    // Two readers take replies: the plant's and the recorder's. The first match may be the
+    // recorder's alone (each pair's key exchange ends on its own), so wait for both.
+    ASSERT_TRUE(wait_for([&] { return m.matched() >= 2; }, 60))
+        << "the plant's and the recorder's reply readers did not both match";
     const auto t0 = std::chrono::steady_clock::now();
     for (uint64_t k = 0;
          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < kAttack_s; ++k) {
