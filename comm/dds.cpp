@@ -127,8 +127,11 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   disc.leaseDuration_announcementperiod =
       eprosima::fastrtps::Duration_t(static_cast<int32_t>(ann_ms / 1000), static_cast<uint32_t>((ann_ms % 1000) * 1000000));
 
-  // Several servers (one per host of a fleet on several hosts): a client registers with every
-  // one, and each server also connects to the others, so that any one of them is enough.
+  // Several servers (one per host of a fleet on several hosts): each server connects to the
+  // others, and a client registers with its own host's server only (own_server). A server
+  // tracks the lease of the clients registered with it, and a server that a partition cut off
+  // would, after the heal, announce as gone every client of the other hosts whose lease ran out
+  // meanwhile; those are then unmatched everywhere although they never stopped.
   const std::vector<std::string> servers = split_servers(o.discovery_server);
   if (o.is_server) {
     if (o.server_index < 0 || o.server_index >= static_cast<int>(servers.size()))
@@ -143,7 +146,9 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   } else if (!servers.empty()) {
     disc.discoveryProtocol = rtps::DiscoveryProtocol_t::CLIENT;
     for (std::size_t i = 0; i < servers.size(); ++i)
-      disc.m_DiscoveryServers.push_back(remote_server(servers[i], static_cast<int>(i)));
+      if (o.own_server < 0 || o.own_server == static_cast<int>(i))
+        disc.m_DiscoveryServers.push_back(remote_server(servers[i], static_cast<int>(i)));
+    if (disc.m_DiscoveryServers.empty()) throw std::invalid_argument("discovery server index out of range");
   }
   if (!servers.empty() && (!o.is_server || servers.size() > 1))
     disc.discoveryServer_client_syncperiod = eprosima::fastrtps::Duration_t(0, 250 * 1000000);
@@ -269,6 +274,7 @@ DdsOptions options_from_env() {
   if (const char* d = std::getenv("MAPTR_DOMAIN")) o.domain = std::atoi(d);
   if (const char* s = std::getenv("MAPTR_DISCOVERY_SERVER")) o.discovery_server = s;
   if (const char* i = std::getenv("MAPTR_DISCOVERY_INDEX")) o.server_index = std::atoi(i);
+  if (const char* i = std::getenv("MAPTR_DISCOVERY_OWN")) o.own_server = std::atoi(i);
   if (const char* a = std::getenv("MAPTR_INTERFACE")) o.interface_address = a;
   if (const char* l = std::getenv("MAPTR_LEASE_S")) o.lease_s = std::atof(l);
   if (const char* t = std::getenv("MAPTR_TRANSPORT")) {

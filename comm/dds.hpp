@@ -32,10 +32,13 @@ namespace maptr::comm {
 /// How a participant finds the others.
 struct DdsOptions {
   int domain = 0;                       ///< DDS domain id (tests use a private one)
-  /// "HOST:PORT[,HOST:PORT...]": be a client of every one of these servers (server i has the
+  /// "HOST:PORT[,HOST:PORT...]": be a client of these servers (all, or own_server; server i has the
   /// GUID prefix of index i); empty: simple discovery
   std::string discovery_server;
   int server_index = 0;                 ///< is_server: which entry of discovery_server this is
+  /// A client: register only with this entry of discovery_server (its own host's server on a
+  /// fleet of several hosts); -1: with every one.
+  int own_server = -1;
   double lease_s = 2.0;                 ///< participant and liveliness lease, s
   bool is_server = false;               ///< this participant is the discovery server
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default

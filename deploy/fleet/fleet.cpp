@@ -104,6 +104,8 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   } else {
     make_secure_domain();
   }
+  // On several hosts the launcher (on the bridge) registers with the plant's host's server.
+  if (on_hosts()) dds_.own_server = kids_.front().host;
   participant_ = std::make_unique<comm::Participant>("launcher", dds_);
   auto& p = *participant_;
   p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &ready_);

@@ -9,12 +9,13 @@
 namespace maptr::deploy::fleet {
 
 namespace {
-/// The settings a process on host h gets from the host: its command prefix and UDP interface.
+/// The settings a process on host h gets from the host: its command prefix, UDP interface and
+/// discovery server (its host's own; comm::DdsOptions::own_server says why).
 Child host_template(const Host& h, int index) {
   Child c;
   c.host = index;
   c.prefix = h.prefix;
-  c.host_env = {{"MAPTR_INTERFACE", h.address}};
+  c.host_env = {{"MAPTR_INTERFACE", h.address}, {"MAPTR_DISCOVERY_OWN", std::to_string(index)}};
   return c;
 }
 }  // namespace
@@ -38,7 +39,7 @@ void Fleet::setup_hosts() {
     }
     dds_.interface_address = hc.launcher_address;
   }
-  // One discovery server per host; each client lists them all, each server knows the others.
+  // One discovery server per host; each server knows the others, each client its host's own.
   std::string servers;
   for (const auto& h : hosts_)
     servers +=

@@ -163,6 +163,30 @@ TEST_F(Hosts, PartitionedHostRejoinsAfterTheHeal) {
   EXPECT_FALSE(s["failures"][1]["detected_s"].is_null()) << s["failures"].dump();
 }
 
+TEST_F(Hosts, APartitionOfAboutOneLeaseCostsNoProcessOfTheOtherHosts) {
+  // Paced to the wall clock, the cut lasts 1.8 s against a 2-s lease: the cut-off host's
+  // discovery server lets the leases of the clients it tracks run out just after the heal. When
+  // every client registered with every server, it then announced the processes of the other
+  // hosts as gone, and the plant lost them all although none had stopped.
+  TempDir tmp;
+  pid_t pid = 0;
+  const std::string out = tmp.path() + "/run";
+  const auto r = run_hosts(run_args(out, {"--agents", "8", "--duration", "10", "--hosts", "3", "--realtime",
+                                          "--partition", "h2@5", "--heal", "h2@6.8"}),
+                           out, 600, pid);
+  ASSERT_EQ(r.exit_code, 0) << r.output << "\nmembership events: " << r.summary["plant"]["membership_events"].dump();
+  const auto& s = r.summary;
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_DOUBLE_EQ(read_json(out + "/fleet.json")["lease_s"].get<double>(), 2.0) << "the cut is sized to it";
+  const auto cut = on_host(s, "h2");
+  ASSERT_FALSE(cut.empty());
+  for (const auto& name : cut) EXPECT_TRUE(rejoined(s, name)) << name << " did not rejoin";
+  for (const auto& e : s["plant"]["membership_events"]) {
+    const std::string name = e["name"];
+    EXPECT_NE(std::find(cut.begin(), cut.end(), name), cut.end()) << "a process off the cut host: " << e.dump();
+  }
+}
+
 TEST_F(Hosts, ProcessOfALostHostRestartsElsewhereThroughTheOtherDiscoveryServers) {
   TempDir tmp;
   pid_t pid = 0;
