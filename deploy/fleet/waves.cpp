@@ -10,6 +10,7 @@ LaunchWaves::LaunchWaves(std::size_t processes, std::size_t controllers, std::si
 LaunchWaves::Range LaunchWaves::take() {
   const std::size_t from = started_ == 0 ? std::min(controllers_, processes_) : started_;
   Range r{started_, std::min(processes_, from + wave_size_)};
+  latest_ = from;
   started_ = r.end;
   return r;
 }
@@ -19,9 +20,15 @@ LaunchWaves::Range LaunchWaves::first() { return started_ == 0 ? take() : Range{
 LaunchWaves::Range LaunchWaves::next(const std::vector<bool>& ready, double since_last_s) {
   if (started_ == 0) return take();
   if (done()) return {started_, started_};
+  // Every agent of the earlier waves ready, and at least half of the latest wave's.
   bool wave_ready = true;
-  for (std::size_t i = controllers_; i < started_; ++i)
-    if (i >= ready.size() || !ready[i]) wave_ready = false;
+  std::size_t latest_ready = 0;
+  for (std::size_t i = controllers_; i < started_; ++i) {
+    const bool r = i < ready.size() && ready[i];
+    if (i >= latest_ && r) ++latest_ready;
+    if (!r && i < latest_) wave_ready = false;
+  }
+  if (2 * latest_ready < started_ - latest_) wave_ready = false;
   if (!wave_ready && since_last_s <= wait_s_) return {started_, started_};
   return take();
 }

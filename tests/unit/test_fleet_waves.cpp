@@ -25,18 +25,31 @@ TEST(FleetWaves, FirstWaveIsTheControllersAndOneWaveOfAgents) {
   EXPECT_TRUE(w.first().empty()) << "the first wave starts once";
 }
 
-TEST(FleetWaves, NextWaveWaitsUntilEveryStartedAgentIsReady) {
+TEST(FleetWaves, NextWaveWaitsUntilHalfOfTheLatestWaveIsReady) {
   LaunchWaves w(kProcesses, kControllers, kWave, kWait);
   w.first();
-  // Controllers not ready yet do not hold agents back; one agent of the wave not ready does.
+  // Controllers not ready yet do not hold agents back; fewer than half of the wave ready does.
   auto ready = ready_up_to(8, kProcesses);
   ready[0] = ready[1] = false;
-  ready[7] = false;
+  ready[5] = ready[6] = ready[7] = false;
   EXPECT_TRUE(w.next(ready, 1.0).empty());
   ready[7] = true;
   const auto r = w.next(ready, 1.0);
   EXPECT_EQ(r.begin, 8u);
   EXPECT_EQ(r.end, 12u);
+}
+
+TEST(FleetWaves, AnEarlierWaveMustBeWhollyReady) {
+  LaunchWaves w(kProcesses, kControllers, kWave, kWait);
+  w.first();
+  EXPECT_EQ(w.next(ready_up_to(8, kProcesses), 1.0).end, 12u);
+  // The latest wave (8..11) all ready, but agent 4 of the first one not: nothing starts.
+  auto ready = ready_up_to(12, kProcesses);
+  ready[4] = false;
+  EXPECT_TRUE(w.next(ready, 1.0).empty());
+  ready[4] = true;
+  ready[10] = ready[11] = false;  // half of the latest wave is enough
+  EXPECT_EQ(w.next(ready, 1.0).begin, 12u);
 }
 
 TEST(FleetWaves, NextWaveStartsAfterTheWaitEvenIfNotReady) {
