@@ -73,12 +73,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   // are the only ones the launcher follows (an external plant is started with the same ids).
   // On a secure domain the plant's prefix comes from its certificate: learnt from its first
   // authenticated tick (learn_secure_plant).
-  if (!o.secure) {
-    const auto p = comm::fleet_guid_prefix(dds_.fleet_id, comm::kPlantParticipantId);
-    GuidPrefix plant{};
-    std::copy(std::begin(p.value), std::end(p.value), plant.begin());
-    clock_.learn_plant(plant);
-  }
+  if (!o.secure) follow_plant(comm::kPlantParticipantId);
   dds_.lease_s = cfg.lease_s(agents);
   rec_.transport = o.transport != "auto" ? o.transport : "shm";
   // Between hosts data goes over UDP: every participant then announces both kinds of locator
@@ -218,6 +213,7 @@ void Fleet::write_fleet() const {
                           {"domain", o_.domain},
                           {"discovery_server", ds_.empty() ? nlohmann::json() : nlohmann::json(dds_.discovery_server)},
                           {"discovery_server_pid", ds_.empty() ? nlohmann::json() : nlohmann::json(ds_.front()->pid())},
+                          {"discovery_own", dds_.own_server},
                           {"secure", secure()},
                           {"security_dir", dds_.security_dir},
                           {"lease_s", dds_.lease_s},
@@ -235,7 +231,20 @@ void Fleet::write_fleet() const {
   std::filesystem::rename(o_.run_dir + "/fleet.json.tmp", o_.run_dir + "/fleet.json");
 }
 
-void Fleet::spawn_child(Child& c) { spawn(c, o_.run_dir, env_, ids_.take(c.base_id, c.starts)); }
+void Fleet::spawn_child(Child& c) {
+  const int id = ids_.take(c.base_id, c.starts);
+  spawn(c, o_.run_dir, env_, id);
+  // A plant started again (a rematch) has the next participant id of its window: from now on its
+  // ticks and gates are the plant's (a secure plant's prefix names its certificate and stays).
+  if (&c == &kids_.front() && !secure()) follow_plant(id);
+}
+
+void Fleet::follow_plant(int participant_id) {
+  const auto p = comm::fleet_guid_prefix(dds_.fleet_id, participant_id);
+  GuidPrefix plant{};
+  std::copy(std::begin(p.value), std::end(p.value), plant.begin());
+  clock_.learn_plant(plant);
+}
 
 void Fleet::spawn_wave(LaunchWaves::Range r) {
   for (std::size_t i = r.begin; i < r.end; ++i)

@@ -67,6 +67,8 @@ class Fleet {
   bool secure() const { return o_.secure; }
   void write_fleet() const;
   void spawn_child(Child& c);
+  /// Follows the ticks and gates of the plant participant with this id (plant_clock.hpp).
+  void follow_plant(int participant_id);
   void spawn_wave(LaunchWaves::Range r);
   void print_external_commands() const;
   void take_ready();

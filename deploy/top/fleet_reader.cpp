@@ -113,6 +113,7 @@ FleetCoordinates read_fleet(const std::string& run_dir) {
     c.info.run_dir = run_dir;
     c.info.domain = j.at("domain").get<int>();
     c.discovery_server = j.at("discovery_server").get<std::string>();
+    c.discovery_own = j.value("discovery_own", -1);
     c.lease_s = j.at("lease_s").get<double>();
     c.fleet_id = j.at("fleet_id").get<uint32_t>();
     c.launcher_pid = j.at("launcher_pid").get<int>();
@@ -143,6 +144,7 @@ FleetReader::FleetReader(const FleetCoordinates& c)
   comm::DdsOptions o;
   o.domain = c.info.domain;
   o.discovery_server = c.discovery_server;
+  o.own_server = c.discovery_own;
   o.lease_s = c.lease_s;
   o.shm = false;
   o.participant_id = free_participant_id(o.domain);

@@ -32,7 +32,8 @@ namespace maptr::top {
 /// How to reach a fleet, from its run folder's fleet.json and scenario.
 struct FleetCoordinates {
   RunInfo info;
-  std::string discovery_server;  ///< HOST:PORT
+  std::string discovery_server;  ///< HOST:PORT[,HOST:PORT...]
+  int discovery_own = -1;        ///< on several hosts: the one server to register with (the plant's host's)
   double lease_s = 2.0;
   uint32_t fleet_id = 0;
   int launcher_pid = 0;

@@ -325,3 +325,25 @@ TEST(Faults, AProcessThatNeverReportsReadyIsStartedAgainDuringDiscovery) {
   for (const auto& p : r.summary["processes"])
     EXPECT_EQ(p["starts"].get<int>(), p["name"] == "L3" ? 2 : 1) << p.dump();
 }
+
+TEST(Faults, APlantStartedAgainDuringDiscoveryIsTheOneWhoseGatesTheLauncherOpens) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run", marker = tmp.path() + "/plant-silenced";
+  // The plant's first start withholds its NodeReady, so the launcher starts it again, with the
+  // next participant id of its window. The launcher must follow that plant's ticks and gates:
+  // the kill at 1 s is applied at its gate, and the run is not taken for stalled.
+  setenv("MAPTR_TEST_SILENT_ONCE", ("plant:" + marker).c_str(), 1);
+  auto r = run_cli(run_args(out, {"--duration", "2", "--kill", "L1@1", "--stall-timeout", "60"}), out, 300);
+  unsetenv("MAPTR_TEST_SILENT_ONCE");
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.summary["status"], "ok");
+  EXPECT_TRUE(std::filesystem::exists(marker)) << "the hook did not silence the plant";
+  EXPECT_EQ(r.summary["discovery_rematched"], nlohmann::json::array({"plant"}));
+  ASSERT_EQ(r.summary["failures"].size(), 1u);
+  EXPECT_FALSE(r.summary["failures"][0].contains("skipped")) << r.summary["failures"].dump();
+  std::ifstream log(out + "/logs/launcher.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_FALSE(text.empty());
+  EXPECT_EQ(text.find("from a participant other than the plant's"), std::string::npos) << text;
+}
