@@ -102,7 +102,9 @@ TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
       for (int j = 0; j < per_side; ++j) {
         const bool needed = k == 0 || sent.at(k).sides()[side].active()[j] != 0 ||
                             comm::idle_answer_due(static_cast<long long>(k), side, j, per_side);
-        if (needed) EXPECT_TRUE(replies.count({k, side, j})) << "tick " << k << " side " << side << " agent " << j;
+        if (needed) {
+          EXPECT_TRUE(replies.count({k, side, j})) << "tick " << k << " side " << side << " agent " << j;
+        }
       }
   std::set<std::pair<uint64_t, int>> statuses;
   for (const auto* m : topics.at("maptr/group")) {
