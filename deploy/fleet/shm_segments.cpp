@@ -70,9 +70,18 @@ std::vector<std::string> remove_orphan_segments(const std::string& dir, double m
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string file = e.path().filename().string();
     const std::string name = segment_name(file);
-    if (name.empty() || file == name) continue;  // one visit per segment: its lock file
+    if (name.empty()) continue;
     struct stat st {};
     if (::lstat(e.path().c_str(), &st) != 0 || st.st_uid != me) continue;
+    if (file == name) {
+      // A segment without lock file and still empty: its creator was killed between creating
+      // and sizing it (nothing can map an empty segment). Otherwise one visit per segment: its
+      // lock file.
+      if (st.st_size == 0 && !fs::exists(fs::path(dir) / (name + kLockSuffix), ec) &&
+          now - static_cast<double>(st.st_mtime) >= min_age_s && fs::remove(e.path(), ec))
+        removed.push_back(name);
+      continue;
+    }
     if (!any_age.count(name) && now - static_cast<double>(st.st_mtime) < min_age_s) continue;
     if (!segment_orphaned(dir, name)) continue;
     fs::remove(fs::path(dir) / name, ec);

@@ -25,7 +25,8 @@ bool segment_orphaned(const std::string& dir, const std::string& name);
 
 /// Removes every orphaned segment (both files) of this user in `dir` whose lock file is older
 /// than min_age_s (a lock file just created is not locked yet), or of any age for the names
-/// in `any_age`; returns the names removed.
+/// in `any_age`, and every empty segment file without lock file older than min_age_s (left by
+/// a process killed while creating it); returns the names removed.
 std::vector<std::string> remove_orphan_segments(const std::string& dir, double min_age_s,
                                                 const std::set<std::string>& any_age = {});
 

@@ -136,6 +136,19 @@ TEST_F(ShmSegments, AProcessKilledWithSigkillLeavesAnOrphan) {
   EXPECT_FALSE(present("fastrtps_00000000000000aa"));
 }
 
+TEST_F(ShmSegments, AnEmptySegmentWithoutLockFileIsRemovedOnceOldEnough) {
+  // A process killed between creating a segment and sizing it leaves an empty file, no lock.
+  for (const std::string f : {"fastrtps_00000000000000c1", "fastrtps_00000000000000c2"}) {
+    std::ofstream(dir / f).close();
+    const timespec t = {time(nullptr) - (f.back() == '1' ? 60 : 0), 0};
+    const timespec times[2] = {t, t};
+    ASSERT_EQ(utimensat(AT_FDCWD, (dir / f).c_str(), times, 0), 0);
+  }
+  EXPECT_EQ(remove_orphan_segments(dir.string(), 2.0), std::vector<std::string>{"fastrtps_00000000000000c1"});
+  EXPECT_FALSE(present("fastrtps_00000000000000c1"));
+  EXPECT_TRUE(present("fastrtps_00000000000000c2")) << "one just being created is kept";
+}
+
 TEST_F(ShmSegments, NoLockFileIsNoOrphan) {
   std::ofstream(dir / "fastrtps_00000000000000bb") << "x";
   EXPECT_FALSE(segment_orphaned(dir.string(), "fastrtps_00000000000000bb"));
