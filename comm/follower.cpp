@@ -1,10 +1,12 @@
 #include "comm/follower.hpp"
 
 #include <cstdlib>
+#include <thread>
 
 #include <unistd.h>
 
 #include "comm/fleet_guid.hpp"
+#include "comm/lockstep.hpp"
 #include "config/scenario.hpp"
 
 namespace maptr::comm {
@@ -96,7 +98,9 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
   int code = 0;
   while (!stop.load() && !finished_.load()) {
     seen = signal_.wait_until(seen, std::chrono::steady_clock::now() + std::chrono::milliseconds(200));
-    if (!announced && ticks_.matched() >= 1 && answer_match_.matched() >= 1) {
+    // The plant's reader of the answers, and the recorder's (comm/lockstep.hpp).
+    const int answer_readers = 1 + recorder_readers(args_.scenario.record, false);
+    if (!announced && ticks_.matched() >= 1 && answer_match_.matched() >= answer_readers) {
       announce_ready(ready_, args_.name, kind_);
       announced = true;
       log_->info("matched the plant: ready");
@@ -111,6 +115,15 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
   }
   ticks_.set_handler(nullptr);  // no answer leaves once run() has returned
   if (stop.load() && !finished_.load()) log_->info("stop signal: exiting");
+  // The recorder takes every answer on one thread, which a loaded machine may keep waiting for a
+  // core; an answer still queued for it when this participant ends is lost to run.mcap (seen as
+  // the last 1-6 ticks' answers missing with both cores saturated). So the participant stays a
+  // moment after the run's end.
+  if (finished_.load() && recorder_readers(args_.scenario.record, false) > 0) {
+    const auto until = std::chrono::steady_clock::now() + kRecorderDrain;
+    while (!stop.load() && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
   return code;
 }
 

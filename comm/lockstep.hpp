@@ -5,8 +5,24 @@
 // An idle agent applies 0 V by definition, so the plant loses nothing by not waiting for it.
 // An agent answers the first tick it follows after a gap (its first tick after a start, or
 // after a pause): the plant waits for a rejoining member.
+//
+// A lock-step sample is best effort: it goes only to the readers its writer has matched. So a
+// process reports ready only once its lock-step writer has matched every reader the run needs,
+// run.mcap's recorder included; a reader matching the writer is not enough.
+#include <chrono>
+#include <string>
 
 namespace maptr::comm {
+
+/// The readers run.mcap's recorder adds to a lock-step topic (0 or 1): it reads every topic
+/// with `record: all`, and the plant's with `record: plant` (recorder/recorder.hpp).
+inline int recorder_readers(const std::string& record, bool plant_topic) {
+  return record == "all" || (record == "plant" && plant_topic) ? 1 : 0;
+}
+
+/// How long a follower's participant stays after the run's end while run.mcap records its
+/// answers, so that the recorder takes the last of them (comm/follower.cpp).
+inline constexpr std::chrono::milliseconds kRecorderDrain{500};
 
 /// Ticks between two answers of an idle agent.
 inline constexpr long long kIdleAnswerEvery = 10;

@@ -1,6 +1,7 @@
 #include "plant/plant_loop.hpp"
 
 #include "comm/fleet_guid.hpp"
+#include "comm/lockstep.hpp"
 #include "config/scenario.hpp"
 
 #include <algorithm>
@@ -87,8 +88,10 @@ bool PlantLoop::discover() {
   bool announced = false, started = false;
   while (!stop_.load() && !started) {
     wait(c_.discovery_poll);
+    // The tick goes to the agents, 2 groups, central, the launcher and the recorder (lockstep.hpp).
+    const int tick_readers = n_agents + 4 + comm::recorder_readers(sc_.record, true);
     if (!announced && replies_.matched() >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
-        tick_match_.matched() >= n_agents + 4) {  // agents, 2 groups, central and the launcher
+        tick_match_.matched() >= tick_readers) {
       comm::announce_ready(w_ready_, "plant", msg::NODE_PLANT);
       announced = true;
       log_.info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,

@@ -60,6 +60,10 @@ struct FleetConfig {
   /// Messages a shared-memory listening port holds: room for every answer of a tick, several
   /// times over (the plant's port takes one from each agent, group and central per tick).
   int shm_port_queue(int agents) const { return std::max(512, 4 * (agents + 8)); }
+  /// ... the recorder's port: it takes every sample of the fleet on one thread, and on a
+  /// saturated machine that thread may wait tens of milliseconds for a core; a sample pushed
+  /// into a full port is lost to run.mcap.
+  int recorder_port_queue(int agents) const { return std::max(8192, 64 * (agents + 8)); }
   /// A fleet on several hosts: how long a process cut off from the plant (a partition) waits
   /// for it to come back before it ends, s.
   double host_plant_loss_s = 120.0;

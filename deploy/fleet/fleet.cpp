@@ -158,6 +158,7 @@ void Fleet::start_recorder() {
   comm::DdsOptions o = dds_;
   const int id = comm::fleet_stride(sc_.robot.agents) + comm::kLauncherParticipantId;
   o.participant_id = id <= comm::rtps_max_participant_id(o_.domain) ? id : -1;
+  o.shm_port_queue = static_cast<uint32_t>(cfg_.recorder_port_queue(sc_.robot.agents));
   recorder_id_ = o.participant_id;
   recorder_ = std::make_unique<recorder::Recorder>(o, o_.run_dir + "/run.mcap", scope, sc_.robot.agents);
 }

@@ -115,7 +115,10 @@ TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
   std::set<uint64_t> commands;
   for (const auto* m : topics.at("maptr/central"))
     commands.insert(decode<msg::CentralCommandPubSubType, msg::CentralCommand>(m->data).tick());
-  EXPECT_EQ(commands.size(), ticks);
+  std::string missing;
+  for (uint64_t k = 0; k < ticks && missing.size() < 200; ++k)
+    if (!commands.count(k)) missing += " " + std::to_string(k);
+  EXPECT_EQ(commands.size(), ticks) << "central's commands missing for ticks" << missing;
   EXPECT_EQ(topics.at("maptr/ready").size(), static_cast<std::size_t>(kAgents) + 4);
 }
 
