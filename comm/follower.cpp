@@ -95,11 +95,13 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
   ticks_.set_handler([&](const msg::PlantTick& t, const eprosima::fastrtps::rtps::InstanceHandle_t& w) {
     on_sample(t, w, on_tick);
   });
+  // The plant's reader of the answers, and the recorder's when run.mcap records them
+  // (comm/lockstep.hpp).
+  const int recorded = recorder_readers(args_.scenario.record, false);
+  const int answer_readers = 1 + recorded;
   int code = 0;
   while (!stop.load() && !finished_.load()) {
     seen = signal_.wait_until(seen, std::chrono::steady_clock::now() + std::chrono::milliseconds(200));
-    // The plant's reader of the answers, and the recorder's (comm/lockstep.hpp).
-    const int answer_readers = 1 + recorder_readers(args_.scenario.record, false);
     if (!announced && ticks_.matched() >= 1 && answer_match_.matched() >= answer_readers) {
       announce_ready(ready_, args_.name, kind_);
       announced = true;
@@ -119,7 +121,7 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
   // core; an answer still queued for it when this participant ends is lost to run.mcap (seen as
   // the last 1-6 ticks' answers missing with both cores saturated). So the participant stays a
   // moment after the run's end.
-  if (finished_.load() && recorder_readers(args_.scenario.record, false) > 0) {
+  if (finished_.load() && recorded > 0) {
     const auto until = std::chrono::steady_clock::now() + kRecorderDrain;
     while (!stop.load() && std::chrono::steady_clock::now() < until)
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

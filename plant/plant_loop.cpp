@@ -86,10 +86,10 @@ bool PlantLoop::discover() {
   const auto t_launch = Clock::now();
   seen_ = signal_.count();
   bool announced = false, started = false;
+  // The tick goes to the agents, 2 groups, central, the launcher and the recorder (lockstep.hpp).
+  const int tick_readers = n_agents + 4 + comm::recorder_readers(sc_.record, true);
   while (!stop_.load() && !started) {
     wait(c_.discovery_poll);
-    // The tick goes to the agents, 2 groups, central, the launcher and the recorder (lockstep.hpp).
-    const int tick_readers = n_agents + 4 + comm::recorder_readers(sc_.record, true);
     if (!announced && replies_.matched() >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
         tick_match_.matched() >= tick_readers) {
       comm::announce_ready(w_ready_, "plant", msg::NODE_PLANT);

@@ -308,14 +308,26 @@ TEST(Faults, PausedProcessesAreOutFromTheirPauseGateAndBackAtTheirResumeGateInEv
   }
 }
 
+namespace {
+
+/// Runs `maptr run` with the MAPTR_TEST_SILENT_ONCE hook on `name`: its first start withholds
+/// its NodeReady (and creates `marker`), so the launcher has to start it again.
+CliResult run_silencing_once(const std::string& name, const std::string& marker, const std::string& out,
+                             const std::vector<std::string>& extra) {
+  setenv("MAPTR_TEST_SILENT_ONCE", (name + ":" + marker).c_str(), 1);
+  auto r = run_cli(run_args(out, extra), out, 300);
+  unsetenv("MAPTR_TEST_SILENT_ONCE");
+  return r;
+}
+
+}  // namespace
+
 TEST(Faults, AProcessThatNeverReportsReadyIsStartedAgainDuringDiscovery) {
   TempDir tmp;
   const std::string out = tmp.path() + "/run", marker = tmp.path() + "/L3-silenced";
   // The first start of L3 withholds its NodeReady; the launcher sees discovery make no progress
   // and starts L3 again, which then reports ready. Nothing here races the simulation.
-  setenv("MAPTR_TEST_SILENT_ONCE", ("L3:" + marker).c_str(), 1);
-  auto r = run_cli(run_args(out, {"--duration", "2"}), out, 300);
-  unsetenv("MAPTR_TEST_SILENT_ONCE");
+  auto r = run_silencing_once("L3", marker, out, {"--duration", "2"});
   ASSERT_FALSE(r.timed_out) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.summary["status"], "ok");
@@ -332,9 +344,8 @@ TEST(Faults, APlantStartedAgainDuringDiscoveryIsTheOneWhoseGatesTheLauncherOpens
   // The plant's first start withholds its NodeReady, so the launcher starts it again, with the
   // next participant id of its window. The launcher must follow that plant's ticks and gates:
   // the kill at 1 s is applied at its gate, and the run is not taken for stalled.
-  setenv("MAPTR_TEST_SILENT_ONCE", ("plant:" + marker).c_str(), 1);
-  auto r = run_cli(run_args(out, {"--duration", "2", "--kill", "L1@1", "--stall-timeout", "60"}), out, 300);
-  unsetenv("MAPTR_TEST_SILENT_ONCE");
+  auto r =
+      run_silencing_once("plant", marker, out, {"--duration", "2", "--kill", "L1@1", "--stall-timeout", "60"});
   ASSERT_FALSE(r.timed_out) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.summary["status"], "ok");
