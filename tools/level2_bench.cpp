@@ -2,9 +2,11 @@
 // problems of the `weights` and `voltages` experiments (16 agents, one side, straight line).
 // One solver per problem family, reused and warm-started as in a group process; the speed
 // wanders around the reference (as in cruise) from one decision to the next.
-// Usage: maptr_level2_bench [DECISIONS_PER_FAMILY [WANDER]]   (defaults 200 and 0.03)
+// Usage: maptr_level2_bench [DECISIONS_PER_FAMILY [WANDER [MAX_ITER]]]
+//        (defaults 200, 0.03 and the solver's Level2SolverConfig::max_iter)
 // WANDER: relative amplitude of the speed's wander around the reference (larger: more decisions
-// in the braking and clamping regions, where J has several local maxima).
+// in the braking and clamping regions, where J has several local maxima). MAX_ITER: Ipopt's
+// iteration limit, to compare limits in one sitting.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -42,6 +44,12 @@ double percentile(std::vector<double> v, double q) {
   return v[static_cast<std::size_t>(q * (v.size() - 1) + 0.5)];
 }
 
+double sum_cpu(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -57,16 +65,25 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "maptr_level2_bench: WANDER = %s: must be a number in [0, 1)\n", argv[2]);
     return 2;
   }
+  maptr::control::Level2SolverConfig config;
+  if (argc > 3) {
+    config.max_iter = std::atoi(argv[3]);
+    if (config.max_iter < 1) {
+      std::fprintf(stderr, "maptr_level2_bench: MAX_ITER = %s: must be a positive integer\n", argv[3]);
+      return 2;
+    }
+  }
   const std::vector<Family> families = {
       {"weights 13.2 kg", 13.2, 10.0, 23.4}, {"weights 23.2 kg", 23.2, 10.0, 23.4},
       {"weights 33.2 kg", 33.2, 10.0, 23.4}, {"voltages 12 V", 14.4, 8.0, 12.0},
       {"voltages 16 V", 14.4, 8.0, 16.0},    {"voltages 20 V", 14.4, 8.0, 20.0},
       {"voltages 23.4 V", 14.4, 8.0, 23.4}};
   std::vector<double> all, all_cpu;
-  int differ = 0, total = 0;
+  int differ = 0, total = 0, failed = 0;
   long iterations = 0;
+  double failed_cpu = 0.0;
   for (const Family& f : families) {
-    Level2Solver solver;
+    Level2Solver solver(config);
     std::vector<double> times, cpu;
     for (int i = 0; i < decisions; ++i) {
       Level2Problem p;
@@ -82,6 +99,10 @@ int main(int argc, char** argv) {
       const double c0 = thread_cpu_ms();
       const auto r = solver.solve(p);
       cpu.push_back(thread_cpu_ms() - c0);
+      if (r.ipopt_status < 0) {  // Ipopt did not converge: the integer choice compared every n
+        ++failed;
+        failed_cpu += cpu.back();
+      }
       times.push_back(r.solve_time_ms);
       iterations += r.iterations;
       const auto oracle = exhaustive_level2(p);
@@ -101,10 +122,10 @@ int main(int argc, char** argv) {
                 percentile(cpu, 0.5));
   }
   std::printf(
-      "all %d decisions: wall median %.3f ms, p95 %.3f ms; cpu median %.3f ms; %.1f Ipopt iterations a "
-      "solve; "
-      "solver != oracle in %d\n",
-      total, percentile(all, 0.5), percentile(all, 0.95), percentile(all_cpu, 0.5),
-      static_cast<double>(iterations) / total, differ);
+      "all %d decisions (max_iter %d): wall median %.3f ms, p95 %.3f ms; cpu median %.3f ms, max %.3f ms, "
+      "total %.0f ms; %.1f Ipopt iterations a solve; not converged %d (%.0f ms cpu); solver != oracle in %d\n",
+      total, config.max_iter, percentile(all, 0.5), percentile(all, 0.95), percentile(all_cpu, 0.5),
+      percentile(all_cpu, 1.0), sum_cpu(all_cpu), static_cast<double>(iterations) / total, failed, failed_cpu,
+      differ);
   return 0;
 }
