@@ -38,10 +38,10 @@ struct Level2Result {
 struct Level2SolverConfig {
   bool fd_hessian = true;  ///< true: exact Hessian by finite differences; false: limited-memory
   double tol = 1e-6;       ///< Ipopt tol (scaled KKT error)
-  /// Ipopt iterations. A solve that converges takes 5 on average; one still unconverged at 30
-  /// sits where J(n) has kinks (speed above the reference: the loop brakes, the voltage clamps
-  /// at 0), fails at 100 as well, and the integer choice then compares every n anyway: a
-  /// higher limit changed no decision of maptr_level2_bench and made such solves cost up to
+  /// Ipopt iterations. A solve that converges takes about 5; one still unconverged at 30 sits
+  /// where J(n) has kinks (speed above the reference: the loop brakes, the voltage clamps at 0)
+  /// and failed at 100 as well in maptr_level2_bench, and an unconverged solve's integer choice
+  /// compares every n anyway. 100 changed no decision there and made such solves cost up to
   /// 145 ms instead of 23 ms (BENCHMARKS.md, "Level-2 solver").
   int max_iter = 30;
   void validate() const;   ///< throws model::ParamError naming the field
