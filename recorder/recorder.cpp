@@ -16,6 +16,10 @@ constexpr int32_t kMinDepth = 256;
 /// Writers of the fleet besides its agents (plant, central, two groups, launcher).
 constexpr int32_t kOtherWriters = 5;
 constexpr const char* kLibrary = "maptr recorder";
+/// The file thread is woken by a full batch or this period, whichever comes first: waking it
+/// for every sample cost two context switches per sample (BENCHMARKS.md, "Recording").
+constexpr std::size_t kWakeBatch = 512;
+constexpr auto kWritePeriod = std::chrono::milliseconds(50);
 
 uint64_t now_ns() {
   return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
@@ -100,6 +104,7 @@ void Recorder::push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& so
     // The log time is taken under the lock: log times rise in file order.
     queue_.push_back({channel, now_ns(), publish_ns, std::move(bytes)});
     ++counts_[channel];
+    if (queue_.size() < kWakeBatch) return;  // the file thread comes by within kWritePeriod
   }
   cv_.notify_one();
 }
@@ -107,7 +112,8 @@ void Recorder::push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& so
 void Recorder::write_loop() {
   std::unique_lock<std::mutex> lk(m_);
   for (;;) {
-    cv_.wait(lk, [this] { return stopping_ || !queue_.empty(); });
+    cv_.wait_for(lk, kWritePeriod, [this] { return stopping_ || queue_.size() >= kWakeBatch; });
+    if (queue_.empty() && !stopping_) continue;
     std::deque<Pending> batch;
     batch.swap(queue_);
     const bool last = stopping_;

@@ -4,7 +4,8 @@
 // (records/mcap.hpp), each with its log time (wall clock when taken, ns since the Unix epoch)
 // and its publish time (the writer's source timestamp). The readers keep a history deeper than
 // one tick's burst of replies and hand samples over at once, so the recorder neither slows the
-// fleet's reliable writers nor loses samples; the file is written off the DDS threads.
+// fleet's reliable writers nor loses samples; the file is written off the DDS threads, by a
+// thread that takes the queued samples in batches (every 50 ms or 512 samples).
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
