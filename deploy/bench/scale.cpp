@@ -59,6 +59,7 @@ std::vector<report::Column> columns() {
                                       {"floor_cs_per_round", "floor cs / round", 1},
                                       {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
   for (const auto& c : fleet_cost_columns()) cols.push_back({c.key, c.head, c.prec});
+  cols.push_back({"record", "run.mcap records", -1});  // last: earlier columns keep their places
   return cols;
 }
 
@@ -111,6 +112,7 @@ config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string&
   s.mode = mode;
   s.duration_s = o.duration_s;
   s.trace_every = kScaleTraceEvery;
+  s.record = o.record;
   for (auto& seg : s.trajectory.segments)
     if (seg.type != "stop") seg.speed_mps = kScaleSpeed;
   if (s.trajectory.total_duration() < s.duration_s)
@@ -154,6 +156,7 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
   json row = {
       {"agents", n},
       {"mode", mode},
+      {"record", o.record},
       {"hosts", hosts},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},

@@ -41,6 +41,9 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
                 "scale: comma-separated control modes run at every size (default ec,all)")
       ->delimiter(',')
       ->check(CLI::IsMember({"ec", "all"}));
+  c->add_option("--record", a.o.record,
+                "what each fleet records in run.mcap: all (default, as `maptr run`), plant or none")
+      ->check(CLI::IsMember({"all", "plant", "none"}));
   c->add_flag("--replot", a.o.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
   return c;
 }
