@@ -59,7 +59,9 @@ std::vector<report::Column> columns() {
                                       {"floor_cs_per_round", "floor cs / round", 1},
                                       {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
   for (const auto& c : fleet_cost_columns()) cols.push_back({c.key, c.head, c.prec});
-  cols.push_back({"record", "run.mcap records", -1});  // last: earlier columns keep their places
+  // last: earlier columns keep their places
+  cols.push_back({"record", "run.mcap records", -1});
+  cols.push_back({"realtime", "paced to the wall clock", -1});
   return cols;
 }
 
@@ -113,6 +115,7 @@ config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string&
   s.duration_s = o.duration_s;
   s.trace_every = kScaleTraceEvery;
   s.record = o.record;
+  s.realtime = o.realtime;
   for (auto& seg : s.trajectory.segments)
     if (seg.type != "stop") seg.speed_mps = kScaleSpeed;
   if (s.trajectory.total_duration() < s.duration_s)
@@ -157,6 +160,7 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"agents", n},
       {"mode", mode},
       {"record", o.record},
+      {"realtime", o.realtime ? "yes" : "no"},
       {"hosts", hosts},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},

@@ -54,6 +54,7 @@ int bench_tick(const BenchOptions& o) {
   s.trajectory.segments = {config::Segment{"straight", kTickSpeed, 0.0, o.duration_s}};
   s.name = "tick-" + std::to_string(n);
   s.record = o.record;
+  s.realtime = o.realtime;
   s.validate();
   const std::string run_dir = o.out + "/runs/tick-N" + std::to_string(n);
   FleetCost cost;
@@ -66,7 +67,7 @@ int bench_tick(const BenchOptions& o) {
   std::ostringstream md;
   md << "Lock-step tick, N = " << n << ", " << o.duration_s << " s simulated at 100 Hz ("
      << static_cast<long long>(sum.number_or(records::summary_key::kTicks, 0)) << " ticks, run.mcap records "
-     << o.record << "), status "
+     << o.record << (o.realtime ? ", paced to the wall clock" : "") << "), status "
      << sum.status() << "\n\n"
      << timing_md(sum) << "\nIPC floor (hub and " << floor.workers << " processes over pipes, "
      << floor.rounds << " rounds): median " << floor.median_us << " µs, p99 " << floor.p99_us << " µs, "

@@ -44,6 +44,9 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
   c->add_option("--record", a.o.record,
                 "what each fleet records in run.mcap: all (default, as `maptr run`), plant or none")
       ->check(CLI::IsMember({"all", "plant", "none"}));
+  c->add_flag("--realtime", a.o.realtime,
+              "pace the fleets' ticks to the wall clock, as `maptr run --realtime`: every tick starts "
+              "from idle processes (the tick median is still publish to integration, without the pause)");
   c->add_flag("--replot", a.o.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
   return c;
 }
