@@ -50,29 +50,49 @@ double sum_cpu(const std::vector<double>& v) {
   return s;
 }
 
+/// The command line: DECISIONS_PER_FAMILY, WANDER, MAX_ITER (each optional, in that order).
+struct Args {
+  int decisions = 200;
+  double wander = kDefaultWander;
+  maptr::control::Level2SolverConfig config;
+};
+
+/// A positive integer, or 0 when `text` is not one.
+int positive_int(const char* text) {
+  char* end = nullptr;
+  const long v = std::strtol(text, &end, 10);
+  return end != text && *end == '\0' && v >= 1 && v <= 1000000000 ? static_cast<int>(v) : 0;
+}
+
+/// Parses the command line; prints what is wrong and returns false on a bad argument.
+bool parse_args(int argc, char** argv, Args& a) {
+  if (argc > 1 && (a.decisions = positive_int(argv[1])) == 0) {
+    std::fprintf(stderr, "maptr_level2_bench: DECISIONS_PER_FAMILY = %s: must be a positive integer\n", argv[1]);
+    return false;
+  }
+  if (argc > 2) {
+    char* end = nullptr;
+    a.wander = std::strtod(argv[2], &end);
+    if (end == argv[2] || *end != '\0' || !(a.wander >= 0.0 && a.wander < 1.0)) {
+      std::fprintf(stderr, "maptr_level2_bench: WANDER = %s: must be a number in [0, 1)\n", argv[2]);
+      return false;
+    }
+  }
+  if (argc > 3 && (a.config.max_iter = positive_int(argv[3])) == 0) {
+    std::fprintf(stderr, "maptr_level2_bench: MAX_ITER = %s: must be a positive integer\n", argv[3]);
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int decisions = argc > 1 ? std::atoi(argv[1]) : 200;
-  if (decisions < 1) {
-    std::fprintf(stderr, "maptr_level2_bench: DECISIONS_PER_FAMILY = %s: must be a positive integer\n",
-                 argv[1]);
-    return 2;
-  }
-  char* end = nullptr;
-  const double wander = argc > 2 ? std::strtod(argv[2], &end) : kDefaultWander;
-  if ((argc > 2 && (end == argv[2] || *end != '\0')) || !(wander >= 0.0 && wander < 1.0)) {
-    std::fprintf(stderr, "maptr_level2_bench: WANDER = %s: must be a number in [0, 1)\n", argv[2]);
-    return 2;
-  }
-  maptr::control::Level2SolverConfig config;
-  if (argc > 3) {
-    config.max_iter = std::atoi(argv[3]);
-    if (config.max_iter < 1) {
-      std::fprintf(stderr, "maptr_level2_bench: MAX_ITER = %s: must be a positive integer\n", argv[3]);
-      return 2;
-    }
-  }
+  Args args;
+  if (!parse_args(argc, argv, args)) return 2;
+  const int decisions = args.decisions;
+  const double wander = args.wander;
+  const maptr::control::Level2SolverConfig& config = args.config;
   const std::vector<Family> families = {
       {"weights 13.2 kg", 13.2, 10.0, 23.4}, {"weights 23.2 kg", 23.2, 10.0, 23.4},
       {"weights 33.2 kg", 33.2, 10.0, 23.4}, {"voltages 12 V", 14.4, 8.0, 12.0},
