@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstring>
+#include <fstream>
 #include <stdexcept>
 #include <thread>
 
@@ -38,6 +40,18 @@ void record_exit(Child& c, const Exit& e) {
 }
 
 bool ended_cleanly(const Child& c) { return c.exit_code == 0 && c.signal == 0; }
+
+std::string describe_end(const Child& c, const std::string& run_dir) {
+  std::string out = c.name + (c.signal != 0 ? " was killed by signal " + std::to_string(c.signal)
+                                            : " exited " + std::to_string(c.exit_code));
+  // The last "critical" or "error" line of its log says why (spdlog: "... [NAME] critical: text").
+  std::ifstream log(run_dir + "/logs/" + c.name + ".log");
+  std::string why;
+  for (std::string line; std::getline(log, line);)
+    for (const char* level : {"] critical: ", "] error: "})
+      if (const auto at = line.find(level); at != std::string::npos) why = line.substr(at + std::strlen(level));
+  return why.empty() ? out : out + ": " + why;
+}
 
 void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id) {
   // Everything the child needs is prepared before fork(): between fork and exec the child of

@@ -53,6 +53,9 @@ Exit exit_of(pid_t pid, int wait_status, long max_rss_kB);
 void record_exit(Child& c, const Exit& e);
 /// A clean end: exit 0 without a signal (a process that saw the plant's last tick).
 bool ended_cleanly(const Child& c);
+/// How c ended and why, for a status line: "group-L exited 1: <its last critical or error log
+/// line>" or "L3 was killed by signal 9" (the log is RUN_DIR/logs/NAME.log).
+std::string describe_end(const Child& c, const std::string& run_dir);
 
 using Environment = std::map<std::string, std::string>;
 

@@ -348,13 +348,15 @@ bool Fleet::discover() {
       log_.info("launched agents up to {} of {}", r.end - kControllers, kids_.size() - kControllers);
     }
     if (since(last_progress_) > cfg_.rematch_s(sc_.robot.agents, secure())) rematch_unready();
-    bool early_death = false;
-    for (std::size_t i = 0; i < waves_->started(); ++i)
-      if (!kids_[i].running && !kids_[i].external) early_death = true;
-    if (early_death || interrupted().load() || since(t_launch_) > timeout) {
-      rec_.status = interrupted().load() ? "aborted: interrupted during discovery"
-                    : early_death        ? "aborted: a process died during discovery (see logs/)"
-                                         : std::string(kDiscoveryTimeout) + "; not ready: " + not_ready();
+    const Child* dead = nullptr;
+    for (std::size_t i = 0; i < waves_->started() && !dead; ++i)
+      if (!kids_[i].running && !kids_[i].external) dead = &kids_[i];
+    if (dead || interrupted().load() || since(t_launch_) > timeout) {
+      rec_.status = interrupted().load()
+                        ? "aborted: interrupted during discovery"
+                    : dead ? "aborted: a process died during discovery: " + describe_end(*dead, o_.run_dir) +
+                                 " (see logs/)"
+                           : std::string(kDiscoveryTimeout) + "; not ready: " + not_ready();
       break;
     }
   }

@@ -77,6 +77,24 @@ TEST(FleetSummary, ExitCodeAndSignalOfChildren) {
   EXPECT_EQ(procs[0]["external"], false);
 }
 
+TEST(FleetSummary, AnEndIsDescribedWithTheLastCriticalOrErrorLineOfTheLog) {
+  const std::string dir = ::testing::TempDir() + "/fleet_describe_end";
+  std::filesystem::create_directories(dir + "/logs");
+  {
+    std::ofstream log(dir + "/logs/group-L.log");
+    log << "2026-11-25 01:28:06.183 [group-L] info: ledger saved\n"
+        << "2026-11-25 01:28:13.455 [group-L] error: first problem\n"
+        << "2026-11-25 01:28:13.455 [group-L] critical: wear ledger L.json has 8 agents, the scenario 64\n"
+        << "2026-11-25 01:28:13.456 [group-L] info: bye\n";
+  }
+  Child group = plant_child(1, 0);
+  group.name = "group-L";
+  EXPECT_EQ(describe_end(group, dir), "group-L exited 1: wear ledger L.json has 8 agents, the scenario 64");
+  Child agent = plant_child(-1, SIGKILL);
+  agent.name = "L3";  // no log at all
+  EXPECT_EQ(describe_end(agent, dir), "L3 was killed by signal 9");
+}
+
 TEST(FleetSummary, ParticipantIdsCycleThroughWindows) {
   ParticipantIds ids(10, 3);
   EXPECT_EQ(ids.take(2, 0), 2);
