@@ -18,6 +18,10 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
     if (v != Verdict::kMalformed && !sent_by(h, comm::agent_participant_id(r.side(), r.index(), sc_.robot.agents)))
       v = Verdict::kForged;
     if (repeated(v, r.tick(), k)) continue;
+    if (late(v, r.tick(), k)) {
+      ++late_;
+      continue;
+    }
     if (v != Verdict::kAccepted) {
       ++rejected_;
       if (v == Verdict::kMalformed)
@@ -39,6 +43,10 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
     const Verdict v = check(g, lim, k);
     const bool own = sent_by(h, comm::group_participant_id(g.side()));
     if (own && repeated(v, g.tick(), k)) continue;
+    if (own && late(v, g.tick(), k)) {
+      ++late_;
+      continue;
+    }
     if (v != Verdict::kAccepted || !own) {
       ++rejected_;
       continue;
@@ -65,6 +73,10 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
     const Verdict v = check(c, lim, k);
     const bool own = sent_by(h, comm::kCentralParticipantId);
     if (own && repeated(v, c.tick(), k)) continue;
+    if (own && late(v, c.tick(), k)) {
+      ++late_;
+      continue;
+    }
     if (v != Verdict::kAccepted || !own) {
       ++rejected_;
       continue;
@@ -175,6 +187,7 @@ int PlantLoop::report(bool stopped) {
   in.live_agents[1] = e.live_agents[1];
   in.rejected_samples = own_rejects();
   in.rejected_by_process = rejects_by_process();
+  in.late_samples = late_;
   in.missed_deadlines = missed_deadlines_;
   in.tick_repairs = repairs_;
   in.declared_dead_by_deadline = declared_dead_;

@@ -134,6 +134,7 @@ class PlantLoop {
   Clock::time_point wall0_;
   std::string end_reason_ = "duration reached";
   uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;
+  uint64_t late_ = 0;  ///< answers from their own sender to a tick before k - 1 (validation.hpp late())
   uint64_t repairs_ = 0;              ///< ticks sent again because answers were missing
   double barrier_average_s_ = 0.0;    ///< typical barrier time (exponential average), s
   /// What each follower last said it dropped (its `rejected` field).

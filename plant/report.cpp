@@ -87,6 +87,7 @@ nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
   j["rms_speed_error_pct"] = core.rms_speed_error_pct();
   j["rejected_samples"] = in.rejected_samples;
   j["rejected_by_process"] = in.rejected_by_process;
+  j["late_samples"] = in.late_samples;
   j["missed_deadlines"] = in.missed_deadlines;
   j["tick_repairs"] = in.tick_repairs;
   j["tick_timing_us"] = in.tick_timing_us;

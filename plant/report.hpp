@@ -58,6 +58,9 @@ struct ReportInputs {
   uint64_t rejected_samples = 0;
   /// Samples each process dropped (the plant's own, and what each follower last reported).
   std::map<std::string, uint64_t> rejected_by_process;
+  /// Answers from their rightful sender that came after the plant had gone past the next tick:
+  /// not used, and not counted among the rejected (which are malformed or forged).
+  uint64_t late_samples = 0;
   uint64_t missed_deadlines = 0;
   uint64_t tick_repairs = 0;  ///< ticks sent again because answers were missing (lost samples)
   uint64_t declared_dead_by_deadline = 0;

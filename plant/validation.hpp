@@ -45,4 +45,11 @@ inline bool repeated(Verdict v, unsigned long long sample_tick, long long k) {
   return v == Verdict::kOtherTick && static_cast<long long>(sample_tick) + 1 == k;
 }
 
+/// True for an answer to an earlier tick than k - 1 from its own sender: it came after the plant
+/// gave up waiting for it (a missed deadline, a slow process). Not used, and counted as late,
+/// apart from the malformed and forged samples.
+inline bool late(Verdict v, unsigned long long sample_tick, long long k) {
+  return v == Verdict::kOtherTick && static_cast<long long>(sample_tick) + 1 < k;
+}
+
 }  // namespace maptr::plant

@@ -154,7 +154,8 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["membership_events"] = membership_events(plant_events, r.failures);
   if (r.chaos_seed >= 0) s["chaos_seed"] = r.chaos_seed;
   s["plant"] = plant;
-  // Samples dropped as malformed, stale or forged, by the process that dropped them.
+  // Samples dropped as malformed, forged or from a wrong sender, by the process that dropped them;
+  // the plant's late answers from their rightful sender are counted apart (plant.json late_samples).
   nlohmann::json rejected = plant.value("rejected_by_process", nlohmann::json::object());
   rejected["launcher"] = r.launcher_rejected;
   s["rejected_samples"] = rejected;

@@ -94,6 +94,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
   in.live_agents[0] = 8;
   in.live_agents[1] = 7;
   in.rejected_samples = 3;
+  in.late_samples = 2;
   const std::vector<plant::MembershipRecord> events = {{"L1", "died (launcher)", 5.0, 123.5}};
   const auto j = plant::plant_report(core, in, events);
   std::set<std::string> keys;
@@ -120,6 +121,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "rms_speed_error_pct",
                                          "rejected_samples",
                                          "rejected_by_process",
+                                         "late_samples",
                                          "missed_deadlines", "tick_repairs",
                                          "tick_timing_us",
                                          "declared_dead_by_deadline",
@@ -127,6 +129,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "group_wear"}));
   EXPECT_EQ(j["live_agents"]["R"], 7);
   EXPECT_EQ(j["rejected_samples"], 3);
+  EXPECT_EQ(j["late_samples"], 2);
   EXPECT_EQ(j["agent_active_s"]["L"].size(), 8u);
   EXPECT_EQ(
       j["membership_events"],

@@ -170,4 +170,19 @@ TEST(PlantValidation, OnlyTheCurrentTickCounts) {
   EXPECT_EQ(check(r, limits(), 8), Verdict::kMalformed);  // malformed whatever its tick
 }
 
+TEST(PlantValidation, AnAnswerOneTickOldIsACopyOlderIsLateNewerIsNeither) {
+  // At tick 9: an answer to 8 is a copy after a repeated tick, one to 7 or before came late.
+  EXPECT_TRUE(plant::repeated(Verdict::kOtherTick, 8, 9));
+  EXPECT_FALSE(plant::late(Verdict::kOtherTick, 8, 9));
+  EXPECT_TRUE(plant::late(Verdict::kOtherTick, 7, 9));
+  EXPECT_TRUE(plant::late(Verdict::kOtherTick, 0, 9));
+  EXPECT_FALSE(plant::repeated(Verdict::kOtherTick, 7, 9));
+  // An answer to a tick not sent yet is neither: it stays a reject.
+  EXPECT_FALSE(plant::late(Verdict::kOtherTick, 10, 9));
+  EXPECT_FALSE(plant::repeated(Verdict::kOtherTick, 10, 9));
+  // A malformed or forged sample is never late.
+  EXPECT_FALSE(plant::late(Verdict::kMalformed, 7, 9));
+  EXPECT_FALSE(plant::late(Verdict::kForged, 7, 9));
+}
+
 }  // namespace
