@@ -10,6 +10,10 @@
 
 namespace maptr::plant {
 
+void PlantLoop::note_late(const char* what, unsigned long long sample_tick, long long k) {
+  if (++late_ <= kRejectsLogged) log_.info("a late {} for tick {} at tick {}: not used", what, sample_tick, k);
+}
+
 void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
   auto replies = replies_.drain();
   consumed_ += replies.size();
@@ -19,7 +23,7 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
       v = Verdict::kForged;
     if (repeated(v, r.tick(), k)) continue;
     if (late(v, r.tick(), k)) {
-      ++late_;
+      note_late("agent reply", r.tick(), k);
       continue;
     }
     if (v != Verdict::kAccepted) {
@@ -27,6 +31,9 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
       if (v == Verdict::kMalformed)
         log_.warn("rejected a malformed agent reply (side {}, index {}, V {})", r.side(), r.index(),
                   r.voltage_V());
+      else if (rejected_ <= kRejectsLogged)
+        log_.warn("rejected an agent reply (side {}, index {}) for tick {} at tick {}{}", r.side(), r.index(),
+                  r.tick(), k, v == Verdict::kForged ? " from a participant other than its agent's" : "");
       continue;
     }
     if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
@@ -44,11 +51,13 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
     const bool own = sent_by(h, comm::group_participant_id(g.side()));
     if (own && repeated(v, g.tick(), k)) continue;
     if (own && late(v, g.tick(), k)) {
-      ++late_;
+      note_late("group status", g.tick(), k);
       continue;
     }
     if (v != Verdict::kAccepted || !own) {
-      ++rejected_;
+      if (++rejected_ <= kRejectsLogged)
+        log_.warn("rejected a group status (side {}) for tick {} at tick {}{}", g.side(), g.tick(), k,
+                  own ? "" : " from a participant other than its group's");
       continue;
     }
     const int s = g.side();
@@ -74,11 +83,13 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
     const bool own = sent_by(h, comm::kCentralParticipantId);
     if (own && repeated(v, c.tick(), k)) continue;
     if (own && late(v, c.tick(), k)) {
-      ++late_;
+      note_late("central command", c.tick(), k);
       continue;
     }
     if (v != Verdict::kAccepted || !own) {
-      ++rejected_;
+      if (++rejected_ <= kRejectsLogged)
+        log_.warn("rejected a central command for tick {} at tick {}{}", c.tick(), k,
+                  own ? "" : " from a participant other than central's");
       continue;
     }
     membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));

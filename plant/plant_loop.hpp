@@ -135,6 +135,9 @@ class PlantLoop {
   std::string end_reason_ = "duration reached";
   uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;
   uint64_t late_ = 0;  ///< answers from their own sender to a tick before k - 1 (validation.hpp late())
+  /// The first this many rejected (and late) samples are logged one by one.
+  static constexpr uint64_t kRejectsLogged = 20;
+  void note_late(const char* what, unsigned long long sample_tick, long long k);
   uint64_t repairs_ = 0;              ///< ticks sent again because answers were missing
   double barrier_average_s_ = 0.0;    ///< typical barrier time (exponential average), s
   /// What each follower last said it dropped (its `rejected` field).
