@@ -10,32 +10,28 @@
 
 namespace maptr::plant {
 
-void PlantLoop::note_late(const char* what, unsigned long long sample_tick, long long k) {
-  if (++late_ <= kRejectsLogged) log_.info("a late {} for tick {} at tick {}: not used", what, sample_tick, k);
+bool PlantLoop::admit(Verdict v, bool own, unsigned long long tick, long long k, const char* what, int side,
+                      int index) {
+  if (own && repeated(v, tick, k)) return false;
+  if (own && late(v, tick, k)) {
+    if (++late_ <= kRejectsLogged)
+      log_.info("a late {} (side {}, index {}) for tick {} at tick {}: not used", what, side, index, tick, k);
+    return false;
+  }
+  if (own && v == Verdict::kAccepted) return true;
+  if (++rejected_ <= kRejectsLogged)
+    log_.warn("rejected a{} {} (side {}, index {}) for tick {} at tick {}{}",
+              v == Verdict::kMalformed ? " malformed" : "", what, side, index, tick, k,
+              own ? "" : ", from a participant other than its sender's");
+  return false;
 }
 
 void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
   auto replies = replies_.drain();
   consumed_ += replies.size();
   for (auto& [r, h] : replies) {
-    Verdict v = check(r, lim, k);
-    if (v != Verdict::kMalformed && !sent_by(h, comm::agent_participant_id(r.side(), r.index(), sc_.robot.agents)))
-      v = Verdict::kForged;
-    if (repeated(v, r.tick(), k)) continue;
-    if (late(v, r.tick(), k)) {
-      note_late("agent reply", r.tick(), k);
-      continue;
-    }
-    if (v != Verdict::kAccepted) {
-      ++rejected_;
-      if (v == Verdict::kMalformed)
-        log_.warn("rejected a malformed agent reply (side {}, index {}, V {})", r.side(), r.index(),
-                  r.voltage_V());
-      else if (rejected_ <= kRejectsLogged)
-        log_.warn("rejected an agent reply (side {}, index {}) for tick {} at tick {}{}", r.side(), r.index(),
-                  r.tick(), k, v == Verdict::kForged ? " from a participant other than its agent's" : "");
-      continue;
-    }
+    const bool own = sent_by(h, comm::agent_participant_id(r.side(), r.index(), sc_.robot.agents));
+    if (!admit(check(r, lim, k), own, r.tick(), k, "agent reply", r.side(), r.index())) continue;
     if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
     membership_.on_answer({Role::kAgent, static_cast<int>(r.side()), r.index()}, writer_id(h));
     cmd_.applied[r.side()][r.index()] = {true, drives(r), r.voltage_V(), r.current_A(), r.efficiency()};
@@ -47,19 +43,8 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
   auto statuses = groups_.drain();
   consumed_ += statuses.size();
   for (auto& [g, h] : statuses) {
-    const Verdict v = check(g, lim, k);
     const bool own = sent_by(h, comm::group_participant_id(g.side()));
-    if (own && repeated(v, g.tick(), k)) continue;
-    if (own && late(v, g.tick(), k)) {
-      note_late("group status", g.tick(), k);
-      continue;
-    }
-    if (v != Verdict::kAccepted || !own) {
-      if (++rejected_ <= kRejectsLogged)
-        log_.warn("rejected a group status (side {}) for tick {} at tick {}{}", g.side(), g.tick(), k,
-                  own ? "" : " from a participant other than its group's");
-      continue;
-    }
+    if (!admit(check(g, lim, k), own, g.tick(), k, "group status", g.side(), 0)) continue;
     const int s = g.side();
     membership_.on_answer({Role::kGroup, s, 0}, writer_id(h));
     cmd_.mask[s] = g.active();
@@ -79,19 +64,8 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
   auto commands = centrals_.drain();
   consumed_ += commands.size();
   for (auto& [c, h] : commands) {
-    const Verdict v = check(c, lim, k);
     const bool own = sent_by(h, comm::kCentralParticipantId);
-    if (own && repeated(v, c.tick(), k)) continue;
-    if (own && late(v, c.tick(), k)) {
-      note_late("central command", c.tick(), k);
-      continue;
-    }
-    if (v != Verdict::kAccepted || !own) {
-      if (++rejected_ <= kRejectsLogged)
-        log_.warn("rejected a central command for tick {} at tick {}{}", c.tick(), k,
-                  own ? "" : " from a participant other than central's");
-      continue;
-    }
+    if (!admit(check(c, lim, k), own, c.tick(), k, "central command", 0, 0)) continue;
     membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));
     for (int s = 0; s < 2; ++s) {
       cmd_.ref[s] = c.phidot_ref()[s];

@@ -137,7 +137,10 @@ class PlantLoop {
   uint64_t late_ = 0;  ///< answers from their own sender to a tick before k - 1 (validation.hpp late())
   /// The first this many rejected (and late) samples are logged one by one.
   static constexpr uint64_t kRejectsLogged = 20;
-  void note_late(const char* what, unsigned long long sample_tick, long long k);
+  /// Whether an answer to tick k is used. A copy of the answer to tick k - 1 from its own sender
+  /// is skipped, an older one from its own sender counted as late, anything else not accepted or
+  /// not from its own sender counted as rejected; the first kRejectsLogged of each are logged.
+  bool admit(Verdict v, bool own, unsigned long long tick, long long k, const char* what, int side, int index);
   uint64_t repairs_ = 0;              ///< ticks sent again because answers were missing
   double barrier_average_s_ = 0.0;    ///< typical barrier time (exponential average), s
   /// What each follower last said it dropped (its `rejected` field).
