@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include "comm/follower.hpp"
-#include "comm/lockstep.hpp"
 #include "comm/side.hpp"
 #include "config/scenario.hpp"
 
@@ -57,6 +56,8 @@ int AgentNode::run() {
     in.central_stamp = t.central_stamp();
     in.group_stamp = own.group_stamp();
     in.assigned = own.active()[index_] != 0;
+    in.phidot_prev_rad_s = own.phidot_prev();
+    in.phidot_ref_prev_rad_s = own.phidot_ref_prev();
     const control::AgentOutput out = core_.step(in);
     msg::AgentReply rep;
     rep.tick(t.tick());
@@ -68,12 +69,12 @@ int AgentNode::run() {
     rep.efficiency(out.efficiency);
     rep.state(to_msg(out.state));
     rep.rejected(follower.rejected());
-    const int per_side = args_.scenario.robot.per_side();
-    // After a gap (the first tick of this process, or the first after a pause) the plant waits
-    // for this agent: it answers whether idle or not.
-    const bool gap = in.tick != last_tick + 1;
+    // The plant waits for the agents whose wake bit is set (assigned, in their idle slot or
+    // rejoining). The first tick of this process is answered in any case: a restarted agent may
+    // take a tick before the plant knows it is back.
+    const bool first = last_tick < 0;
     last_tick = in.tick;
-    if (in.assigned || gap || comm::idle_answer_due(in.tick, side_, index_, per_side)) follower.answer(rep);
+    if (own.wake()[index_] != 0 || in.assigned || first) follower.answer(rep);
   });
 }
 

@@ -238,20 +238,28 @@ std::string qos_profiles_file() {
 }
 
 dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l) {
+  return writer(t, p, l, 0);
+}
+
+dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l, int32_t reader_filters) {
   load_qos_profiles();
   dds::DataWriterQos q;
   if (pub_->get_datawriter_qos_from_profile(profile_name(p, true), q) != ReturnCode_t::RETCODE_OK)
     throw missing_profile(profile_name(p, true));
+  if (reader_filters > 0) {
+    q.writer_resource_limits().reader_filters_allocation.initial = static_cast<size_t>(reader_filters);
+    q.writer_resource_limits().reader_filters_allocation.maximum = static_cast<size_t>(reader_filters);
+  }
   auto* w = pub_->create_datawriter(t, q, l, l ? dds::StatusMask::publication_matched() : dds::StatusMask::none());
   if (!w) throw std::runtime_error("cannot create writer on " + t->get_name());
   return w;
 }
 
-dds::DataReader* Participant::reader(dds::Topic* t, Profile p, dds::DataReaderListener* l) {
+dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::DataReaderListener* l) {
   return reader(t, p, l, 0);
 }
 
-dds::DataReader* Participant::reader(dds::Topic* t, Profile p, dds::DataReaderListener* l, int32_t depth) {
+dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::DataReaderListener* l, int32_t depth) {
   load_qos_profiles();
   dds::DataReaderQos q;
   if (sub_->get_datareader_qos_from_profile(profile_name(p, false), q) != ReturnCode_t::RETCODE_OK)

@@ -278,11 +278,16 @@ class Participant {
 
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* t, Profile p,
                                              eprosima::fastdds::dds::DataWriterListener* l = nullptr);
-  eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* t, Profile p,
+  /// A writer that evaluates the content filters of up to `reader_filters` readers before it
+  /// sends (writer-side filtering, comm/tick_filter.hpp); 0: none, each reader filters itself.
+  eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* t, Profile p,
+                                             eprosima::fastdds::dds::DataWriterListener* l, int32_t reader_filters);
+  /// A reader of a topic or of a filtered view of one (a ContentFilteredTopic).
+  eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::TopicDescription* t, Profile p,
                                              eprosima::fastdds::dds::DataReaderListener* l);
   /// A reader of profile `p` whose history keeps the last `depth` samples (a recorder's, deeper
   /// than what the fleet's writers send in one burst).
-  eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::Topic* t, Profile p,
+  eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::TopicDescription* t, Profile p,
                                              eprosima::fastdds::dds::DataReaderListener* l, int32_t depth);
   eprosima::fastdds::dds::DomainParticipant* raw() { return dp_; }
   const DdsOptions& options() const { return o_; }

@@ -7,6 +7,7 @@
 
 #include "comm/fleet_guid.hpp"
 #include "comm/lockstep.hpp"
+#include "comm/tick_filter.hpp"
 #include "config/scenario.hpp"
 
 namespace maptr::comm {
@@ -30,7 +31,13 @@ TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
   answer_match_.only_fleet(args_.dds.fleet_id);  // a watcher of the answers is not the plant
   participant_ = std::make_unique<Participant>(args_.name, args_.dds);
   auto& p = *participant_;
-  p.reader(p.topic<msg::PlantTickPubSubType>(topic::kTick), Profile::kStream, &ticks_);
+  auto* tick = p.topic<msg::PlantTickPubSubType>(topic::kTick);
+  // An agent takes the ticks it needs only (comm/tick_filter.hpp), unless the run says otherwise.
+  int side = 0, index = 0;
+  if (node_kind == msg::NODE_AGENT && args_.scenario.tick_filter && config::parse_agent_name(args_.name, side, index))
+    p.reader(agent_tick_topic(p.raw(), tick, side, index), Profile::kStream, &ticks_);
+  else
+    p.reader(tick, Profile::kStream, &ticks_);
   ready_ = p.writer(p.topic<msg::NodeReadyPubSubType>(topic::kReady), Profile::kLatched);
 }
 
@@ -77,6 +84,7 @@ void TickFollower::on_sample(const msg::PlantTick& t, const eprosima::fastrtps::
     signal_.notify();
     return;
   }
+  ++followed_;
   on_tick(t);
 }
 
@@ -116,6 +124,8 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
     }
   }
   ticks_.set_handler(nullptr);  // no answer leaves once run() has returned
+  log_->info("followed {} ticks ({} skipped while paused, {} rejected)", followed_.load(), skipped_paused_.load(),
+             rejected());
   if (stop.load() && !finished_.load()) log_->info("stop signal: exiting");
   // The recorder takes every answer on one thread, which a loaded machine may keep waiting for a
   // core; an answer still queued for it when this participant ends is lost to run.mcap (seen as

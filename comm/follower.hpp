@@ -83,6 +83,7 @@ class TickFollower {
   long long answered_tick_ = -1;  ///< the tick last_answer_ answers
   std::function<void()> resend_;
   std::atomic<uint64_t> skipped_paused_{0};
+  std::atomic<uint64_t> followed_{0};  ///< ticks handed to the node (an agent's: the tick filter's)
   int slot_ = -1;  ///< this process's entry in PlantTick::paused (paused_slot)
   std::optional<eprosima::fastrtps::rtps::InstanceHandle_t> plant_writer_;
   // Written on the DDS receive thread by on_sample, read by the loop.

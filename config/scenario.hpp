@@ -90,6 +90,7 @@ struct Scenario {
   bool realtime = false;               ///< pace ticks to the wall clock
   int trace_every = 1;                 ///< write every n-th tick to trace.csv
   std::string record = "all";          ///< run.mcap: "all" topics, "plant" (ticks, gates, events), "none"
+  bool tick_filter = true;             ///< an agent takes only the ticks it answers (comm/tick_filter.hpp)
   double initial_discharge_mAh = 0.0;  ///< battery state at start (both groups), mAh
   /// End the run once the speed has stayed more than this many percent below its reference
   /// for 5 s after having reached it (0: never; the battery experiment runs until then).

@@ -50,6 +50,9 @@ Table<S> run_fields() {
       text<S>(
           "record", [](auto& s) -> auto& { return s.record; }, {"all", "plant", "none"},
           "run.mcap: all (every topic), plant (ticks, fault gates, membership, control, ready) or none"),
+      flag<S>(
+          "tick_filter", [](auto& s) -> auto& { return s.tick_filter; },
+          "an agent takes only the ticks it answers or needs (the plant's writer filters them; false: every tick)"),
       real<S>(
           "stop_below_speed_pct", [](auto& s) -> auto& { return s.stop_below_speed_pct; },
           Range{0, 100, false, true, false, 1}, "%",

@@ -104,6 +104,7 @@ bool PlantLoop::collect() {
     // between two ticks finds itself no longer marked paused in the copy.
     if (barrier_.resend_due(membership_, now_s())) {
       sent_.paused(membership_.paused_mask());
+      set_wake();
       w_tick_->write(&sent_);
     }
     if (barrier_.repair_due(consumed_, now_s())) {

@@ -2,6 +2,7 @@
 
 #include "comm/fleet_guid.hpp"
 #include "comm/lockstep.hpp"
+#include "comm/tick_filter.hpp"
 #include "config/scenario.hpp"
 
 #include <algorithm>
@@ -58,8 +59,11 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
       gate_(fault_times(args.scenario.faults), c.gate_timeout_s),
       barrier_(c.deadline_s(args.scenario.robot.agents), c.resend_s) {
   tick_match_.only_fleet(args.dds.fleet_id);  // readers outside the fleet (a watcher) are no members
-  w_tick_ =
-      p_.writer(p_.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match_);
+  // With the tick filter the writer evaluates each agent's filter and sends an agent only the
+  // ticks it needs (comm/tick_filter.hpp).
+  if (sc_.tick_filter) comm::register_tick_filter(p_.raw());
+  w_tick_ = p_.writer(p_.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match_,
+                      sc_.tick_filter ? comm::tick_filter_capacity(sc_.robot.agents) : 0);
   p_.reader(p_.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &replies_);
   p_.reader(p_.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), comm::Profile::kStream, &groups_);
   p_.reader(p_.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), comm::Profile::kStream,
@@ -169,8 +173,16 @@ void PlantLoop::publish(msg::RunState run_state) {
   t.distance_m(x[model::kDistance]);
   t.central_stamp(cmd_.central_stamp);
   const int charge[2] = {model::kChargeL, model::kChargeR};
+  const bool new_tick = core_.tick() != published_tick_;
   for (int s = 0; s < 2; ++s) {
     msg::SideTick& side = t.sides()[s];
+    // The values of tick k-1 for an agent that did not take it (the first tick: its own).
+    if (new_tick) {
+      side.phidot_prev(published_tick_ < 0 ? core_.phidot(s) : prev_phidot_[s]);
+      side.phidot_ref_prev(published_tick_ < 0 ? cmd_.ref[s] : prev_ref_[s]);
+      prev_phidot_[s] = core_.phidot(s);
+      prev_ref_[s] = cmd_.ref[s];
+    }
     side.phidot(core_.phidot(s));
     side.battery_V(core_.battery_V(s));
     side.V_active(core_.active_voltage(s));
@@ -182,9 +194,22 @@ void PlantLoop::publish(msg::RunState run_state) {
     side.n_active(static_cast<uint16_t>(count(cmd_.mask[s])));
     side.relay_count(static_cast<uint16_t>(cmd_.relay[s]));
   }
+  published_tick_ = core_.tick();
   t.paused(membership_.paused_mask());
   t.run_state(run_state);
+  set_wake();
   w_tick_->write(&t);
+}
+
+void PlantLoop::set_wake() {
+  const long long k = static_cast<long long>(sent_.tick());
+  for (int s = 0; s < 2; ++s) {
+    msg::SideTick& side = sent_.sides()[s];
+    std::vector<uint8_t> wake = membership_.rejoining_mask(s);
+    for (int j = 0; j < per_side_; ++j)
+      if (side.active()[static_cast<std::size_t>(j)] != 0 || comm::idle_answer_due(k, s, j, per_side_)) wake[static_cast<std::size_t>(j)] = 1;
+    side.wake(std::move(wake));
+  }
 }
 
 void PlantLoop::log_membership() {

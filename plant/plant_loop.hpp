@@ -129,6 +129,11 @@ class PlantLoop {
   Barrier barrier_;
   Commands cmd_;
   msg::PlantTick sent_;  ///< the tick last published (resent unchanged to a restarted member)
+  /// Each side's speed and reference of the tick published before sent_ (SideTick::phidot_prev).
+  double prev_phidot_[2] = {0.0, 0.0}, prev_ref_[2] = {0.0, 0.0};
+  long long published_tick_ = -1;  ///< sent_'s tick, -1 before the first
+  /// Sets each side's wake mask of sent_ (SideTick::wake): assigned, idle slot due or rejoining.
+  void set_wake();
   TickTimes times_;
   TickTiming timing_;
   Clock::time_point wall0_;

@@ -9,7 +9,20 @@ namespace maptr::control {
 
 AgentCore::AgentCore(AgentConfig c) : c_(c), pid_(c.pid) {}
 
+void AgentCore::skip_to(const AgentInput& in) {
+  // Tick k-1 as an idle agent with a fresh group and central steps it (below): not assigned,
+  // PID reset, reference = central's, error followed.
+  last_assigned_ = false;
+  was_driving_ = false;
+  pid_.reset();
+  stop_ref_ = in.phidot_ref_prev_rad_s;
+  prev_error_ = in.phidot_ref_prev_rad_s - in.phidot_prev_rad_s;
+  has_prev_error_ = true;
+}
+
 AgentOutput AgentCore::step(const AgentInput& in) {
+  if (in.tick >= 1 && in.tick != last_tick_ + 1) skip_to(in);
+  last_tick_ = in.tick;
   AgentOutput out;
   const double dt = c_.dt_s;
   // Assignment: fresh from the group, or held for a bounded time, then coast.

@@ -11,6 +11,9 @@
 //                               then coast (open circuit)
 //   central silent longer than central_timeout_s: ramp the last reference to zero at
 //                               stop_decel_mps2 / r [rad/s^2] (a safe stop), still obeying the group
+//   ticks skipped (the tick filter, comm/tick_check.hpp: the agent was idle with a fresh group
+//   and central in each, or it did not run yet): the agent goes on from tick k-1's speed and
+//   reference carried in tick k, exactly as if it had stepped through them idle
 #include <cstdint>
 
 #include "control/level1/pid.hpp"
@@ -40,6 +43,8 @@ struct AgentInput {
   long long central_stamp = -1;   ///< tick of the central command in force
   bool assigned = false;          ///< its bit in the group's active mask
   long long group_stamp = -1;     ///< tick of the group status in force
+  double phidot_prev_rad_s = 0.0;      ///< its wheel's speed at tick k-1 (for skipped ticks)
+  double phidot_ref_prev_rad_s = 0.0;  ///< reference in force at tick k-1 (for skipped ticks)
 };
 
 struct AgentOutput {
@@ -65,6 +70,10 @@ class AgentCore {
   double stop_ref_ = 0.0;    ///< reference while stopping, rad/s
   double prev_error_ = 0.0;  ///< last tick's speed error, rad/s (tracked while idle too)
   bool has_prev_error_ = false;
+  long long last_tick_ = -1;  ///< the tick stepped last, -1 before the first
+
+  /// The state after idle steps through ticks up to k-1 (k = in.tick >= 1) that it did not take.
+  void skip_to(const AgentInput& in);
 };
 
 }  // namespace maptr::control

@@ -62,6 +62,7 @@ std::vector<report::Column> columns() {
   // last: earlier columns keep their places
   cols.push_back({"record", "run.mcap records", -1});
   cols.push_back({"realtime", "paced to the wall clock", -1});
+  cols.push_back({"tick_filter", "tick filter", -1});
   return cols;
 }
 
@@ -116,6 +117,7 @@ config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string&
   s.trace_every = kScaleTraceEvery;
   s.record = o.record;
   s.realtime = o.realtime;
+  s.tick_filter = o.tick_filter;
   for (auto& seg : s.trajectory.segments)
     if (seg.type != "stop") seg.speed_mps = kScaleSpeed;
   if (s.trajectory.total_duration() < s.duration_s)
@@ -161,6 +163,7 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"mode", mode},
       {"record", o.record},
       {"realtime", o.realtime ? "yes" : "no"},
+      {"tick_filter", o.tick_filter ? "yes" : "no"},
       {"hosts", hosts},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},

@@ -55,6 +55,7 @@ int bench_tick(const BenchOptions& o) {
   s.name = "tick-" + std::to_string(n);
   s.record = o.record;
   s.realtime = o.realtime;
+  s.tick_filter = o.tick_filter;
   s.validate();
   const std::string run_dir = o.out + "/runs/tick-N" + std::to_string(n);
   FleetCost cost;
@@ -67,7 +68,8 @@ int bench_tick(const BenchOptions& o) {
   std::ostringstream md;
   md << "Lock-step tick, N = " << n << ", " << o.duration_s << " s simulated at 100 Hz ("
      << static_cast<long long>(sum.number_or(records::summary_key::kTicks, 0)) << " ticks, run.mcap records "
-     << o.record << (o.realtime ? ", paced to the wall clock" : "") << "), status "
+     << o.record << (o.realtime ? ", paced to the wall clock" : "") << (o.tick_filter ? "" : ", tick filter off")
+     << "), status "
      << sum.status() << "\n\n"
      << timing_md(sum) << "\nIPC floor (hub and " << floor.workers << " processes over pipes, "
      << floor.rounds << " rounds): median " << floor.median_us << " µs, p99 " << floor.p99_us << " µs, "

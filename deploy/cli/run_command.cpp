@@ -110,6 +110,8 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm on one host; data on shm+udp across hosts or with --secure)")
       ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
   run->add_option("--record", a.record, "what run.mcap records: all (default), plant or none");
+  run->add_option("--tick-filter", a.tick_filter,
+                  "true (default): an idle agent takes only the ticks it answers; false: every tick");
   run->add_flag("--secure", a.secure,
                 "DDS Security: a private CA, one certificate and permissions per process, encrypted data");
   run->add_option("--hosts", a.hosts, "run the fleet on N hosts (network namespaces; needs root)")
@@ -136,7 +138,8 @@ Scenario scenario_from(const RunArgs& a) {
       {"--agents", "agents", &RunArgs::agents},          {"--gross-kg", "gross_mass_kg", &RunArgs::gross_kg},
       {"--motor", "motor", &RunArgs::motor},             {"--mode", "mode", &RunArgs::mode},
       {"--duration", "duration_s", &RunArgs::duration},  {"--tick-hz", "tick_hz", &RunArgs::tick_hz},
-      {"--trace-every", "trace_every", &RunArgs::trace_every}, {"--record", "record", &RunArgs::record}};
+      {"--trace-every", "trace_every", &RunArgs::trace_every}, {"--record", "record", &RunArgs::record},
+      {"--tick-filter", "tick_filter", &RunArgs::tick_filter}};
   Scenario s = config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
   for (const auto& o : kOverrides)
     if (!(a.*o.value).empty()) config::set_field(s, o.path, a.*o.value, o.option);

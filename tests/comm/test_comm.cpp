@@ -93,6 +93,7 @@ msg::PlantTick two_sided_tick() {
     side.phidot_ref(101.0 + s);
     side.active(s == msg::SIDE_L ? std::vector<uint8_t>{1, 1, 0, 0} : std::vector<uint8_t>{1, 0, 0, 0});
     side.live(std::vector<uint8_t>{1, 1, 1, static_cast<uint8_t>(s)});
+    side.wake(side.active());
     side.group_stamp(40 + s);
     side.n_active(static_cast<uint16_t>(2 - s));
     side.relay_count(static_cast<uint16_t>(1 + s));

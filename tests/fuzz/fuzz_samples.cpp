@@ -53,7 +53,8 @@ void tick(const std::uint8_t* d, std::size_t n) {
     // What agents, groups and central read from a tick they follow.
     require(static_cast<long long>(t.tick()) > last);
     for (const msg::SideTick& s : t.sides())
-      require(s.active().size() == kPerSide && s.live().size() == kPerSide && s.n_active() <= kPerSide &&
+      require(s.active().size() == kPerSide && s.live().size() == kPerSide && s.wake().size() == kPerSide &&
+              s.n_active() <= kPerSide &&
               std::isfinite(s.battery_V()) && s.battery_V() >= 0.0);
   }
 }

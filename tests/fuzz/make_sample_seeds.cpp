@@ -47,6 +47,8 @@ msg::PlantTick tick_sample() {
     s.phidot_ref(81.0);
     s.active(std::vector<std::uint8_t>(fuzz::kPerSide, 0));
     s.live(std::vector<std::uint8_t>(fuzz::kPerSide, 1));
+    s.wake(std::vector<std::uint8_t>(fuzz::kPerSide, 0));
+    s.wake()[0] = s.wake()[1] = 1;
     s.active()[0] = s.active()[1] = 1;
     s.n_active(2);
     s.relay_count(2);

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "comm/lockstep.hpp"
+#include "comm/tick_check.hpp"
 #include "control/level1/agent_core.hpp"
+#include "idl/maptr.h"
 
 namespace {
 
@@ -99,12 +102,14 @@ TEST(Agent, SilentGroupHoldsTheLastAssignmentThenCoasts) {
   const AgentConfig c = proportional();  // group_hold_s = 1 s at dt = 10 ms
   AgentCore a(c);
   a.step(still(1, 10.0, 0, 0));
-  // The group's last status is from tick 0; central stays fresh.
-  const AgentOutput held = a.step(still(51, 10.0, 0, 50));  // group silent for 0.5 s
+  // The group's last status is from tick 0; central stays fresh. While the group is silent an
+  // agent takes every tick (comm/tick_check.hpp).
+  AgentOutput held, coast;
+  for (long long k = 2; k <= 51; ++k) held = a.step(still(k, 10.0, 0, k - 1));  // silent for 0.5 s
   EXPECT_EQ(held.state, AgentState::kHolding);
   EXPECT_NEAR(held.voltage_V, 10.0, 1e-12);
   EXPECT_TRUE(held.drives());
-  const AgentOutput coast = a.step(still(151, 10.0, 0, 150));  // silent for 1.5 s
+  for (long long k = 52; k <= 151; ++k) coast = a.step(still(k, 10.0, 0, k - 1));  // silent for 1.5 s
   EXPECT_EQ(coast.state, AgentState::kCoasting);
   EXPECT_EQ(coast.voltage_V, 0.0);
   EXPECT_FALSE(coast.drives());
@@ -133,6 +138,106 @@ TEST(Agent, SilentCentralRampsTheReferenceToZeroAtTheStopDeceleration) {
     ASSERT_NEAR(out.voltage_V, expected, 1e-9) << k;
   }
   EXPECT_EQ(expected, 0.0);
+}
+
+/// Tick k of a side of 4 agents as the plant publishes it: agent 2 is assigned in bursts, central
+/// falls silent for 2 s (the agents stop) and the group for 1.5 s (they hold, then coast).
+maptr::msg::PlantTick side_tick(long long k) {
+  namespace msg = maptr::msg;
+  const auto speed = [](long long j) { return 285.0 - 2.0 * std::cos(0.05 * static_cast<double>(j)); };
+  const auto ref = [](long long j) { return 285.0 + 0.01 * static_cast<double>(j % 500); };
+  const auto assigned = [](long long j) { return (j / 37) % 3 == 0 || (j / 11) % 7 == 3; };
+  msg::PlantTick t;
+  t.tick(static_cast<uint64_t>(k));
+  t.dt(0.01);
+  t.run_state(msg::RUN_RUNNING);
+  t.central_stamp(k >= 800 && k < 1000 ? 799 : k - 1);
+  for (int s = 0; s < 2; ++s) {
+    msg::SideTick& side = t.sides()[s];
+    side.phidot(speed(k));
+    side.phidot_ref(ref(k));
+    side.phidot_prev(speed(k > 0 ? k - 1 : k));
+    side.phidot_ref_prev(ref(k > 0 ? k - 1 : k));
+    side.battery_V(23.4);
+    side.V_active(k % 5 == 0 ? 0.0 : 9.0 + std::sin(0.01 * static_cast<double>(k)));
+    side.group_stamp(k >= 1340 && k < 1490 ? 1339 : k - 1);
+    std::vector<uint8_t> active(4, 0), wake(4, 0);
+    active[2] = assigned(k) ? 1 : 0;
+    for (int j = 0; j < 4; ++j)
+      wake[static_cast<std::size_t>(j)] = active[static_cast<std::size_t>(j)] != 0 || maptr::comm::idle_answer_due(k, s, j, 4);
+    side.active(active);
+    side.live(std::vector<uint8_t>(4, 1));
+    side.wake(wake);
+  }
+  return t;
+}
+
+AgentInput input_of(const maptr::msg::PlantTick& t, int side, int index) {
+  const auto& own = t.sides()[static_cast<std::size_t>(side)];
+  AgentInput in;
+  in.tick = static_cast<long long>(t.tick());
+  in.phidot_rad_s = own.phidot();
+  in.battery_V = own.battery_V();
+  in.side_active_V = own.V_active();
+  in.phidot_ref_rad_s = own.phidot_ref();
+  in.central_stamp = t.central_stamp();
+  in.group_stamp = own.group_stamp();
+  in.assigned = own.active()[static_cast<std::size_t>(index)] != 0;
+  in.phidot_prev_rad_s = own.phidot_prev();
+  in.phidot_ref_prev_rad_s = own.phidot_ref_prev();
+  return in;
+}
+
+TEST(Agent, TakingOnlyTheFilteredTicksGivesTheSameAnswersAsTakingEvery) {
+  // One agent takes every tick, the other only those the tick filter delivers
+  // (comm::tick_wakes_agent); at every tick both take, both answer the same, bit for bit.
+  AgentCore every{AgentConfig{}}, filtered{AgentConfig{}};
+  int taken = 0, compared_active = 0, compared_stopping = 0, compared_holding = 0;
+  const long long ticks = 2000;
+  for (long long k = 0; k < ticks; ++k) {
+    const auto t = side_tick(k);
+    const AgentOutput a = every.step(input_of(t, 0, 2));
+    if (!maptr::comm::tick_wakes_agent(t, 0, 2)) {
+      ASSERT_FALSE(a.drives()) << "tick " << k << ": the filter held back a tick the agent drives in";
+      continue;
+    }
+    ++taken;
+    const AgentOutput b = filtered.step(input_of(t, 0, 2));
+    ASSERT_EQ(a.voltage_V, b.voltage_V) << "tick " << k;
+    ASSERT_EQ(a.current_A, b.current_A) << "tick " << k;
+    ASSERT_EQ(a.state, b.state) << "tick " << k;
+    compared_active += a.state == AgentState::kActive && a.voltage_V > 0.0;
+    compared_stopping += a.state == AgentState::kStopping;
+    compared_holding += a.state == AgentState::kHolding;
+  }
+  // The comparison covers each case, and the filter held back a good part of the ticks.
+  EXPECT_GT(compared_active, 100);
+  EXPECT_GT(compared_stopping, 10);
+  EXPECT_GT(compared_holding, 10);
+  EXPECT_LT(taken, ticks * 3 / 4);
+}
+
+TEST(Agent, TheTickFilterDeliversWhatAnAgentNeeds) {
+  namespace msg = maptr::msg;
+  using maptr::comm::tick_wakes_agent;
+  msg::PlantTick t = side_tick(401);  // agent 2 idle (401 / 37 = 10, 401 / 11 = 36), all fresh
+  ASSERT_EQ(t.sides()[0].active()[2], 0);
+  t.sides()[0].wake()[2] = 0;
+  EXPECT_FALSE(tick_wakes_agent(t, 0, 2));
+  t.sides()[0].wake()[2] = 1;  // its idle slot, or rejoining
+  EXPECT_TRUE(tick_wakes_agent(t, 0, 2));
+  t.sides()[0].wake()[2] = 0;
+  t.central_stamp(399);  // central's command of tick 400 missing
+  EXPECT_TRUE(tick_wakes_agent(t, 0, 2));
+  t.central_stamp(400);
+  t.sides()[0].group_stamp(399);  // its group's status missing
+  EXPECT_TRUE(tick_wakes_agent(t, 0, 2));
+  EXPECT_FALSE(tick_wakes_agent(t, 1, 2));  // the other side's group is fresh
+  t.sides()[0].group_stamp(400);
+  t.run_state(msg::RUN_FINISHED);  // everyone takes the end of the run
+  EXPECT_TRUE(tick_wakes_agent(t, 0, 2));
+  t.run_state(msg::RUN_RUNNING);
+  EXPECT_TRUE(tick_wakes_agent(t, 0, 9));  // out of range: delivered, the follower rejects it
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ msg::PlantTick tick(unsigned long long k) {
     s.battery_V(24.0);
     s.active(std::vector<uint8_t>{1, 1, 0, 0});
     s.live(std::vector<uint8_t>(kPerSide, 1));
+    s.wake(std::vector<uint8_t>{1, 1, 0, 0});
     s.n_active(2);
     s.relay_count(2);
   }
