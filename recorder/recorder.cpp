@@ -1,8 +1,12 @@
 #include "recorder/recorder.hpp"
 
+#include <cstdlib>
+#include <set>
+
 #include <algorithm>
 #include <stdexcept>
 
+#include "comm/fleet_guid.hpp"
 #include "idl/idl_text.hpp"
 
 namespace maptr::recorder {
@@ -58,15 +62,34 @@ class Recorder::Tap : public dds::DataReaderListener {
     while (reader->take_next_sample(&s, &info) == ReturnCode_t::RETCODE_OK)
       if (info.valid_data) r_.push(channel_, info.source_timestamp, std::move(s.bytes));
   }
+  /// For tests only: the first start's writer of this process is never counted as matched.
+  void deaf_to(uint32_t fleet_id, int base_participant_id) {
+    deaf_fleet_ = fleet_id;
+    deaf_id_ = base_participant_id;
+  }
   void on_subscription_matched(dds::DataReader*, const dds::SubscriptionMatchedStatus& s) override {
-    matched_.store(s.current_count);
+    std::lock_guard<std::mutex> g(m_);
+    if (deaf_id_ >= 0 && comm::fleet_participant(deaf_fleet_, s.last_publication_handle) == deaf_id_) return;
+    if (s.current_count_change > 0)
+      writers_.insert(s.last_publication_handle);
+    else if (s.current_count_change < 0)
+      writers_.erase(s.last_publication_handle);
+    matched_.store(static_cast<int>(writers_.size()));
   }
   int matched() const { return matched_.load(); }
+  std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> writers() const {
+    std::lock_guard<std::mutex> g(m_);
+    return {writers_.begin(), writers_.end()};
+  }
 
  private:
   Recorder& r_;
   uint16_t channel_;
   std::atomic<int> matched_{0};
+  mutable std::mutex m_;
+  std::set<eprosima::fastrtps::rtps::InstanceHandle_t> writers_;
+  uint32_t deaf_fleet_ = 0;
+  int deaf_id_ = -1;
 };
 
 Recorder::Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents)
@@ -85,6 +108,11 @@ Recorder::Recorder(const comm::DdsOptions& o, const std::string& path, Scope sco
   for (std::size_t i = 0; i < topics_.size(); ++i) {
     const auto& t = topics_[i];
     taps_.push_back(std::make_unique<Tap>(*this, static_cast<uint16_t>(i)));
+    // Test hook: MAPTR_TEST_RECORDER_DEAF_TO=NAME hides the first start of agent NAME's answer
+    // writer from the recorder's match count (the launcher then starts NAME again).
+    const char* deaf = std::getenv(kTestRecorderDeafEnv);
+    if (deaf && *deaf && t.topic == std::string(comm::topic::kAgentReply) && o.fleet_id != 0)
+      taps_.back()->deaf_to(o.fleet_id, comm::base_participant_id(deaf, agents));
     auto* topic = participant_->topic(t.topic, new comm::RawType(t.type_name, t.max_size));
     participant_->reader(topic, t.profile, taps_.back().get(), recorder_depth(agents));
   }
@@ -146,6 +174,12 @@ bool Recorder::wait_matched(const std::map<std::string, int>& writers,
     if (std::chrono::steady_clock::now() > deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+}
+
+std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> Recorder::matched_writers(const std::string& topic) const {
+  for (std::size_t i = 0; i < topics_.size(); ++i)
+    if (topics_[i].topic == topic) return taps_[i]->writers();
+  return {};
 }
 
 void Recorder::stop() {

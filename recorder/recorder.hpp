@@ -39,6 +39,10 @@ std::vector<comm::FleetTopic> recorded_topics(Scope scope);
 /// them: the history depth of its readers.
 int32_t recorder_depth(int agents);
 
+/// For tests only: the environment variable that hides an agent's first answer writer from the
+/// recorder's match count (recorder.cpp).
+inline constexpr const char* kTestRecorderDeafEnv = "MAPTR_TEST_RECORDER_DEAF_TO";
+
 class Recorder {
  public:
   /// Joins the domain of `o` (a participant of its own) and opens `path`. Throws
@@ -53,6 +57,8 @@ class Recorder {
   bool wait_matched(const std::map<std::string, int>& writers,
                     std::chrono::steady_clock::time_point deadline);
   std::string missing() const { return missing_; }
+  /// The writers of `topic` the recorder has matched (their GUIDs, comm/fleet_guid.hpp).
+  std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> matched_writers(const std::string& topic) const;
   /// Leaves the domain, writes what is left and closes the file (once).
   void stop();
   /// Messages recorded per topic so far.

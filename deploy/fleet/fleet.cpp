@@ -175,9 +175,55 @@ void Fleet::await_recorder() {
                                               {comm::topic::kControl, 1}, {comm::topic::kMembership, 1}};
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                            std::chrono::duration<double>(cfg_.discovery_timeout_s(agents)));
-  if (!recorder_->wait_matched(writers, deadline))
-    log_.warn("recorder: not every writer matched before the start ({}); run.mcap misses their first samples",
-              recorder_->missing());
+  // An agent can report ready (its writer matched the recorder's reader) while the recorder's
+  // reader never matches its writer (seen once in a fleet of 512). Such agents are started again
+  // after the rematch interval without progress, as the unready ones are during discovery.
+  std::size_t matched = 0;
+  auto progress = Clock::now();
+  while (!recorder_->wait_matched(writers, std::min(deadline, Clock::now() + std::chrono::seconds(1)))) {
+    if (Clock::now() > deadline) {
+      log_.warn("recorder: not every writer matched before the start ({}); run.mcap misses their samples until "
+                "they match",
+                recorder_->missing());
+      return;
+    }
+    const std::size_t now_matched = recorder_->matched_writers(comm::topic::kAgentReply).size();
+    if (now_matched != matched) {
+      matched = now_matched;
+      progress = Clock::now();
+    }
+    if (since(progress) > cfg_.rematch_s(agents, secure()) && rematch_unrecorded()) progress = Clock::now();
+  }
+}
+
+bool Fleet::rematch_unrecorded() {
+  if (dds_.fleet_id == 0) return false;  // writers cannot be told apart (a secure domain)
+  const auto seen = recorder_->matched_writers(comm::topic::kAgentReply);
+  std::vector<Child*> unseen;
+  for (auto& c : kids_) {
+    if (c.kind != ChildKind::kAgent || c.external || !c.running) continue;
+    const bool recorded = std::any_of(seen.begin(), seen.end(), [&](const auto& h) {
+      return comm::written_by(dds_.fleet_id, sc_.robot.agents, h, c.name);
+    });
+    if (!recorded) unseen.push_back(&c);
+  }
+  for (Child* c : unseen) {
+    start_again(*c);
+    ready_names_.erase(c->name);
+    rec_.rematched.push_back(c->name);
+    log_.warn("run.mcap's recorder did not match {}'s writer within {:.0f} s; started it again (pid {})", c->name,
+              cfg_.rematch_s(sc_.robot.agents, secure()), c->pid);
+  }
+  if (unseen.empty()) return false;
+  // The restarted agents report ready again before the start.
+  const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(cfg_.rematch_s(sc_.robot.agents, secure())));
+  while (ready_names_.size() < kids_.size() && Clock::now() < until && !interrupted().load()) {
+    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
+    take_ready();
+    reap(false);
+  }
+  return true;
 }
 
 void Fleet::stop_recorder() {

@@ -57,6 +57,9 @@ class Fleet {
   void make_children();
   void start_recorder();
   void await_recorder();
+  /// Starts again every agent whose answer writer run.mcap's recorder has not matched, and waits
+  /// (up to the rematch interval) until they are ready again; false when there was none.
+  bool rematch_unrecorded();
   void stop_recorder();
   void make_secure_domain();
   void rematch_unready();

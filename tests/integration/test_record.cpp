@@ -201,3 +201,29 @@ TEST(Record, AReplayIsSeenLiveByAReaderOfTheFleetsTypes) {
   EXPECT_EQ(before.tick(), static_cast<uint64_t>(rows.back().tick));
   EXPECT_NEAR(before.energy_J(), rows.back().energy_J, 1e-8 * rows.back().energy_J);
 }
+
+TEST(Record, AnAgentWhoseWriterTheRecorderNeverMatchesIsStartedAgainAndRecorded) {
+  // The test hook hides the first start of L1's answer writer from the recorder, as if its
+  // discovery had failed on the recorder's side only (seen once with 512 agents). The launcher
+  // starts L1 again after the rematch interval, and run.mcap holds its answers from tick 0.
+  TempDir tmp;
+  const std::string out = tmp.path() + "/deaf";
+  setenv("MAPTR_TEST_RECORDER_DEAF_TO", "L1", 1);
+  const auto r = maptr::testing::run_cli(maptr::testing::run_args(out, {"--agents", "8", "--duration", "2"}), out, 300);
+  unsetenv("MAPTR_TEST_RECORDER_DEAF_TO");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.summary.value("status", ""), "ok");
+  const auto rematched = r.summary.value("discovery_rematched", nlohmann::json::array());
+  EXPECT_NE(std::find(rematched.begin(), rematched.end(), "L1"), rematched.end()) << r.summary.dump();
+  std::ifstream log(out + "/logs/launcher.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("recorder did not match L1's writer"), std::string::npos) << text;
+  // L1 (side L, index 1) answers its first tick, tick 0, as every agent does.
+  const auto f = records::mcap::read_file(out + "/run.mcap");
+  bool l1_first = false;
+  for (const auto* m : by_topic(f).at("maptr/agent_reply")) {
+    const auto a = decode<msg::AgentReplyPubSubType, msg::AgentReply>(m->data);
+    if (a.side() == msg::SIDE_L && a.index() == 1 && a.tick() == 0) l1_first = true;
+  }
+  EXPECT_TRUE(l1_first) << "L1's answer to tick 0 is not in run.mcap";
+}
