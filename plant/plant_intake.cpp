@@ -33,6 +33,7 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
     const bool own = sent_by(h, comm::agent_participant_id(r.side(), r.index(), sc_.robot.agents));
     if (!admit(check(r, lim, k), own, r.tick(), k, "agent reply", r.side(), r.index())) continue;
     if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
+    ++taken_[0];
     membership_.on_answer({Role::kAgent, static_cast<int>(r.side()), r.index()}, writer_id(h));
     cmd_.applied[r.side()][r.index()] = {true, drives(r), r.voltage_V(), r.current_A(), r.efficiency()};
     agent_rejects_[r.side()][r.index()] = r.rejected();
@@ -46,6 +47,7 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
     const bool own = sent_by(h, comm::group_participant_id(g.side()));
     if (!admit(check(g, lim, k), own, g.tick(), k, "group status", g.side(), 0)) continue;
     const int s = g.side();
+    ++taken_[1];
     membership_.on_answer({Role::kGroup, s, 0}, writer_id(h));
     cmd_.mask[s] = g.active();
     for (int j = 0; j < per_side_; ++j)
@@ -66,6 +68,7 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
   for (auto& [c, h] : commands) {
     const bool own = sent_by(h, comm::kCentralParticipantId);
     if (!admit(check(c, lim, k), own, c.tick(), k, "central command", 0, 0)) continue;
+    ++taken_[2];
     membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));
     for (int s = 0; s < 2; ++s) {
       cmd_.ref[s] = c.phidot_ref()[s];
@@ -176,6 +179,8 @@ int PlantLoop::report(bool stopped) {
   in.late_samples = late_;
   in.missed_deadlines = missed_deadlines_;
   in.tick_repairs = repairs_;
+  in.answers_taken = {{comm::topic::kAgentReply, taken_[0]}, {comm::topic::kGroup, taken_[1]},
+                      {comm::topic::kCentral, taken_[2]}};
   in.declared_dead_by_deadline = declared_dead_;
   in.tick_timing_us = timing_.json();
   in.group_wear = wear_.json();

@@ -146,6 +146,7 @@ class PlantLoop {
   /// is skipped, an older one from its own sender counted as late, anything else not accepted or
   /// not from its own sender counted as rejected; the first kRejectsLogged of each are logged.
   bool admit(Verdict v, bool own, unsigned long long tick, long long k, const char* what, int side, int index);
+  uint64_t taken_[3] = {0, 0, 0};     ///< answers used: agents', groups', central's
   uint64_t repairs_ = 0;              ///< ticks sent again because answers were missing
   double barrier_average_s_ = 0.0;    ///< typical barrier time (exponential average), s
   /// What each follower last said it dropped (its `rejected` field).

@@ -90,6 +90,7 @@ nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
   j["late_samples"] = in.late_samples;
   j["missed_deadlines"] = in.missed_deadlines;
   j["tick_repairs"] = in.tick_repairs;
+  j["answers_taken"] = in.answers_taken;
   j["tick_timing_us"] = in.tick_timing_us;
   j["declared_dead_by_deadline"] = in.declared_dead_by_deadline;
   j["membership_events"] = membership_json(records);

@@ -63,6 +63,8 @@ struct ReportInputs {
   uint64_t late_samples = 0;
   uint64_t missed_deadlines = 0;
   uint64_t tick_repairs = 0;  ///< ticks sent again because answers were missing (lost samples)
+  /// Answers the plant used, by topic (each answers one tick of one member once).
+  std::map<std::string, uint64_t> answers_taken;
   uint64_t declared_dead_by_deadline = 0;
   nlohmann::json tick_timing_us = nlohmann::json::object();
   nlohmann::json group_wear = nlohmann::json::object();  ///< WearWatch::json()

@@ -232,6 +232,7 @@ void Fleet::stop_recorder() {
   std::string counts;
   for (const auto& [topic, n] : recorder_->counts()) counts += " " + topic + " " + std::to_string(n);
   log_.info("recorded run.mcap:{}", counts);
+  rec_.recorded = recorder_->counts();
 }
 
 void Fleet::make_secure_domain() {

@@ -162,10 +162,25 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["level2"] = level2_stats(run_dir);
   s["processes"] = processes_json(kids);
   if (!r.hosts.is_null()) s["hosts"] = r.hosts;
+  s["recording"] = recording_check(r.recorded, plant);
   const std::string trace = run_dir + "/trace.csv";
   s["trace_sha256"] = std::filesystem::exists(trace) ? sha256_of(trace) : "";
   s["status"] = kids.empty() ? r.status : final_status(r.status, plant, kids.front());
   return s;
+}
+
+nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded, const nlohmann::json& plant) {
+  if (recorded.empty()) return nullptr;
+  nlohmann::json incomplete = nlohmann::json::object();
+  const nlohmann::json taken_by_topic = plant.value("answers_taken", nlohmann::json::object());
+  for (const auto& [topic, taken] : taken_by_topic.items()) {
+    const auto it = recorded.find(topic);
+    if (it == recorded.end() || !taken.is_number_integer() || taken.get<long long>() < 0)
+      continue;  // a topic run.mcap does not record
+    if (it->second < taken.get<uint64_t>())
+      incomplete[topic] = {{"recorded", it->second}, {"taken_by_plant", taken.get<uint64_t>()}};
+  }
+  return {{"recorded", recorded}, {"incomplete", incomplete}};
 }
 
 }  // namespace maptr::deploy::fleet
@@ -199,6 +214,16 @@ std::string human_summary(const nlohmann::json& s) {
                 s["processes"].empty() ? 0.0 : rss_sum / 1024.0 / s["processes"].size(),
                 s.value("trace_sha256", "").c_str());
   os << buf;
+  const nlohmann::json incomplete =
+      s.contains("recording") && s["recording"].is_object()
+          ? s["recording"].value("incomplete", nlohmann::json::object())
+          : nlohmann::json::object();
+  for (const auto& [topic, c] : incomplete.items()) {
+    std::snprintf(buf, sizeof(buf), "recording   run.mcap INCOMPLETE: %s holds %llu messages, the plant used %llu\n",
+                  topic.c_str(), static_cast<unsigned long long>(c.value("recorded", 0ull)),
+                  static_cast<unsigned long long>(c.value("taken_by_plant", 0ull)));
+    os << buf;
+  }
   if (s.contains("level2") && s["level2"].is_object())
     for (const auto& [side, l2] : s["level2"].items()) {
       if (l2.value("decisions", 0) == 0) continue;

@@ -3,6 +3,8 @@
 // (discovery time, restarts of the discovery server, transport), every fault with its
 // analysis, the Level-2 figures of the groups, every process's end and the trace's hash.
 // Experiments and tests read its keys. Free of DDS.
+#include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -26,7 +28,15 @@ struct RunRecord {
   nlohmann::json failures = nlohmann::json::array();  ///< the fault records
   long launcher_rejected = 0;  ///< ticks and fault gates the launcher dropped (not from the plant)
   nlohmann::json hosts;        ///< a fleet on several hosts: its hosts (else null)
+  /// Messages run.mcap recorded per topic (empty without a recording).
+  std::map<std::string, uint64_t> recorded;
 };
+
+/// run.mcap against what the plant used: {"recorded": {topic: n}, "incomplete": {topic:
+/// {"recorded": n, "taken_by_plant": m}}} for each topic of which run.mcap holds fewer messages
+/// than the plant used answers (every answer it used was sent to the recorder too); null without
+/// a recording.
+nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded, const nlohmann::json& plant);
 
 /// The run's status: the launcher's if it aborted, else the plant's ("unknown" without one),
 /// or an abort naming the plant's exit when the plant left no results.

@@ -79,6 +79,9 @@ TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
     EXPECT_EQ(f.schemas.at(ch.schema_id).name.rfind("maptr::msg::", 0), 0u)
         << f.schemas.at(ch.schema_id).name;
   }
+  // The summary's own check agrees: nothing the plant used is missing from run.mcap.
+  EXPECT_TRUE(run.result.summary["recording"]["incomplete"].empty()) << run.result.summary["recording"].dump();
+  EXPECT_GT(run.result.summary["recording"]["recorded"].value("maptr/agent_reply", 0), 0);
   const auto ticks = static_cast<std::size_t>(run.result.summary.value("ticks", 0.0));
   // Ticks 0..ticks, one PlantTick each, and a copy for every tick the plant sent again.
   const auto repairs = run.result.summary["plant"].value("tick_repairs", std::size_t{0});

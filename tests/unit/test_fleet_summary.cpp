@@ -156,3 +156,31 @@ TEST(FleetSummary, ABrokenLevel2LogIsReportedWithoutDecisions) {
   EXPECT_DOUBLE_EQ(l2["R"]["solve_ms_median"].get<double>(), 2.5);
   EXPECT_FALSE(l2["R"].contains("error"));
 }
+
+namespace {
+
+TEST(FleetSummary, ARecordingWithFewerAnswersThanThePlantUsedIsIncompleteAndSaidSo) {
+  const nlohmann::json plant = {
+      {"answers_taken", {{"maptr/agent_reply", 512000}, {"maptr/group", 2000}, {"maptr/central", 1000}}}};
+  // What a recording of the 512-agent fleet held once: most answers missing, the rest there;
+  // repeated answers make the recorder's counts higher than the plant's.
+  const std::map<std::string, uint64_t> recorded = {
+      {"maptr/agent_reply", 32967}, {"maptr/group", 2004}, {"maptr/central", 1000}, {"maptr/tick", 1001}};
+  const nlohmann::json c = recording_check(recorded, plant);
+  ASSERT_TRUE(c.is_object());
+  EXPECT_EQ(c["recorded"]["maptr/tick"], 1001);
+  ASSERT_EQ(c["incomplete"].size(), 1u) << c.dump();
+  EXPECT_EQ(c["incomplete"]["maptr/agent_reply"]["recorded"], 32967);
+  EXPECT_EQ(c["incomplete"]["maptr/agent_reply"]["taken_by_plant"], 512000);
+  nlohmann::json s = {{"status", "ok"}, {"processes", nlohmann::json::array()},
+                      {"battery_discharge_mAh", {{"L", 1.0}, {"R", 1.0}}}, {"recording", c}};
+  const std::string human = maptr::deploy::human_summary(s);
+  EXPECT_NE(human.find("run.mcap INCOMPLETE: maptr/agent_reply holds 32967 messages, the plant used 512000"),
+            std::string::npos)
+      << human;
+  // A complete recording, a topic the recording leaves out (record: plant), and none at all.
+  EXPECT_TRUE(recording_check({{"maptr/agent_reply", 512000}, {"maptr/tick", 1001}}, plant)["incomplete"].empty());
+  EXPECT_TRUE(recording_check({}, plant).is_null());
+}
+
+}  // namespace
