@@ -5,6 +5,7 @@
 #include <fastdds/dds/topic/IContentFilter.hpp>
 #include <fastdds/dds/topic/IContentFilterFactory.hpp>
 
+#include <atomic>
 #include <cstdlib>
 #include <mutex>
 #include <stdexcept>
@@ -61,7 +62,7 @@ class DecodedTick {
   }
 };
 
-class TickFilter : public dds::IContentFilter {
+class TickFilter final : public dds::IContentFilter {
  public:
   TickFilter(DecodedTick& cache, int side, int index) : cache_(cache), side_(side), index_(index) {}
 
@@ -97,33 +98,57 @@ class TickFilterFactory : public dds::IContentFilterFactory {
   ReturnCode_t create_content_filter(const char*, const char*, const eprosima::fastdds::dds::TopicDataType*,
                                      const char*, const ParameterSeq& params,
                                      dds::IContentFilter*& instance) override {
+    if (instance != nullptr) {  // new parameters for a filter in place: no table change
+      int side = 0, index = 0;
+      if (params.length() != 2 || !parse_int(params[0], 0, 1, side) || !parse_int(params[1], 0, 65535, index))
+        return ReturnCode_t::RETCODE_BAD_PARAMETER;
+      static_cast<TickFilter*>(instance)->set(side, index);
+      return ReturnCode_t::RETCODE_OK;
+    }
+    // On the writer's side a new filter enters the writer's table next (TickFilterGate).
+    if (auto* g = gate_.load()) g->mutation_begins();
     // Parameters: side (0 or 1), index within the side.
     int side = 0, index = 0;
     if (params.length() != 2 || !parse_int(params[0], 0, 1, side) || !parse_int(params[1], 0, 65535, index))
       return ReturnCode_t::RETCODE_BAD_PARAMETER;
-    if (instance != nullptr) {
-      static_cast<TickFilter*>(instance)->set(side, index);
-      return ReturnCode_t::RETCODE_OK;
-    }
     instance = new TickFilter(cache_, side, index);
     return ReturnCode_t::RETCODE_OK;
   }
 
   ReturnCode_t delete_content_filter(const char*, dds::IContentFilter* instance) override {
+    // On the writer's side the filter leaves the writer's table next (TickFilterGate).
+    if (auto* g = gate_.load()) g->mutation_begins();
     delete static_cast<TickFilter*>(instance);
     return ReturnCode_t::RETCODE_OK;
   }
 
+  void set_gate(TickFilterGate* g) { gate_.store(g); }
+
  private:
   DecodedTick cache_;
+  std::atomic<TickFilterGate*> gate_{nullptr};
 };
 
 }  // namespace
 
-void register_tick_filter(dds::DomainParticipant* dp) {
-  if (dp->lookup_content_filter_factory(kTickFilterClass) != nullptr) return;
+void TickFilterGate::mutation_begins() {
+  std::unique_lock<std::mutex> lk(m_);
+  // Bounded, so that a write that never ends cannot hold discovery for good.
+  cv_.wait_for(lk, std::chrono::seconds(2), [this] { return !writing_; });
+  ++pending_;
+}
+
+void TickFilterGate::matched_changed() {
+  std::lock_guard<std::mutex> g(m_);
+  if (pending_ > 0) --pending_;
+  cv_.notify_all();
+}
+
+void register_tick_filter(dds::DomainParticipant* dp, TickFilterGate* gate) {
   // One factory for the process, never deleted: a participant may call it until it is gone.
   static auto* const factory = new TickFilterFactory();
+  if (gate) factory->set_gate(gate);
+  if (dp->lookup_content_filter_factory(kTickFilterClass) != nullptr) return;
   if (dp->register_content_filter_factory(kTickFilterClass, factory) != ReturnCode_t::RETCODE_OK)
     throw std::runtime_error("cannot register the tick filter");
 }

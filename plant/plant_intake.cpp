@@ -108,11 +108,11 @@ bool PlantLoop::collect() {
     if (barrier_.resend_due(membership_, now_s())) {
       sent_.paused(membership_.paused_mask());
       set_wake();
-      w_tick_->write(&sent_);
+      write_tick();
     }
     if (barrier_.repair_due(consumed_, now_s())) {
       ++repairs_;
-      w_tick_->write(&sent_);
+      write_tick();
     }
     if (barrier_.deadline_passed(now_s())) {
       declared_dead_ += membership_.on_deadline();
@@ -179,6 +179,8 @@ int PlantLoop::report(bool stopped) {
   in.late_samples = late_;
   in.missed_deadlines = missed_deadlines_;
   in.tick_repairs = repairs_;
+  if (filter_gate_.timeouts() > 0)
+    log_.warn("{} tick writes went ahead of a filter change whose end was not signalled", filter_gate_.timeouts());
   in.answers_taken = {{comm::topic::kAgentReply, taken_[0]}, {comm::topic::kGroup, taken_[1]},
                       {comm::topic::kCentral, taken_[2]}};
   in.declared_dead_by_deadline = declared_dead_;

@@ -61,7 +61,7 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
   tick_match_.only_fleet(args.dds.fleet_id);  // readers outside the fleet (a watcher) are no members
   // With the tick filter the writer evaluates each agent's filter and sends an agent only the
   // ticks it needs (comm/tick_filter.hpp).
-  if (sc_.tick_filter) comm::register_tick_filter(p_.raw());
+  if (sc_.tick_filter) comm::register_tick_filter(p_.raw(), &filter_gate_);
   w_tick_ = p_.writer(p_.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match_,
                       sc_.tick_filter ? comm::tick_filter_capacity(sc_.robot.agents) : 0);
   p_.reader(p_.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &replies_);
@@ -198,7 +198,7 @@ void PlantLoop::publish(msg::RunState run_state) {
   t.paused(membership_.paused_mask());
   t.run_state(run_state);
   set_wake();
-  w_tick_->write(&t);
+  write_tick();
 }
 
 void PlantLoop::set_wake() {

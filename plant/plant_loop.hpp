@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "comm/process.hpp"
+#include "comm/tick_filter.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "plant/barrier.hpp"
 #include "plant/fault_gate.hpp"
@@ -113,7 +114,10 @@ class PlantLoop {
   comm::Inbox<msg::CentralCommand> centrals_{signal_, comm::Wake::kCounted};
   comm::Inbox<msg::MembershipEvent> members_{signal_};
   comm::Inbox<msg::Control> controls_{signal_};
-  comm::MatchCounter tick_match_{&signal_};
+  /// Keeps the tick writer's writes apart from Fast DDS's changes of its filter table (declared
+  /// before the participant, whose end still deletes filters through it).
+  comm::TickFilterGate filter_gate_;
+  comm::TickWriterMatch tick_match_{&signal_, &filter_gate_};
   comm::Participant p_;
   eprosima::fastdds::dds::DataWriter* w_tick_ = nullptr;
   eprosima::fastdds::dds::DataWriter* w_ready_ = nullptr;
@@ -134,6 +138,10 @@ class PlantLoop {
   long long published_tick_ = -1;  ///< sent_'s tick, -1 before the first
   /// Sets each side's wake mask of sent_ (SideTick::wake): assigned, idle slot due or rejoining.
   void set_wake();
+  /// Writes sent_ on the tick writer (through the filter gate).
+  void write_tick() {
+    filter_gate_.write([this] { w_tick_->write(&sent_); });
+  }
   TickTimes times_;
   TickTiming timing_;
   Clock::time_point wall0_;

@@ -11,13 +11,20 @@ AgentCore::AgentCore(AgentConfig c) : c_(c), pid_(c.pid) {}
 
 void AgentCore::skip_to(const AgentInput& in) {
   // Tick k-1 as an idle agent with a fresh group and central steps it (below): not assigned,
-  // PID reset, reference = central's, error followed.
-  last_assigned_ = false;
-  was_driving_ = false;
-  pid_.reset();
-  stop_ref_ = in.phidot_ref_prev_rad_s;
-  prev_error_ = in.phidot_ref_prev_rad_s - in.phidot_prev_rad_s;
-  has_prev_error_ = true;
+  // PID reset, reference = central's, error followed. Only what tick k shows to hold: a gap the
+  // tick filter made always ends so (at k-1 the group and central were fresh, so their commands
+  // in force at k are at most two ticks old), while another gap (a lost tick, a pause) may end
+  // inside an outage, where the agent goes on from its own state (a hold, a safe-stop ramp).
+  if (in.group_stamp >= 0 && in.group_stamp >= in.tick - 2) {
+    last_assigned_ = false;
+    was_driving_ = false;
+    pid_.reset();
+  }
+  if (in.central_stamp >= 0 && in.central_stamp >= in.tick - 2) {
+    stop_ref_ = in.phidot_ref_prev_rad_s;
+    prev_error_ = in.phidot_ref_prev_rad_s - in.phidot_prev_rad_s;
+    has_prev_error_ = true;
+  }
 }
 
 AgentOutput AgentCore::step(const AgentInput& in) {

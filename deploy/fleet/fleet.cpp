@@ -180,11 +180,17 @@ void Fleet::await_recorder() {
   // after the rematch interval without progress, as the unready ones are during discovery.
   std::size_t matched = 0;
   auto progress = Clock::now();
-  while (!recorder_->wait_matched(writers, std::min(deadline, Clock::now() + std::chrono::seconds(1)))) {
+  // Done when the recorder has matched every writer and every process is (again) ready.
+  while (!recorder_->wait_matched(writers, std::min(deadline, Clock::now() + std::chrono::seconds(1))) ||
+         ready_names_.size() < kids_.size()) {
+    if (ready_names_.size() < kids_.size()) seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
+    take_ready();
+    reap(false);
+    if (interrupted().load()) return;
     if (Clock::now() > deadline) {
-      log_.warn("recorder: not every writer matched before the start ({}); run.mcap misses their samples until "
-                "they match",
-                recorder_->missing());
+      log_.warn("recorder: not every writer matched before the start ({}; not ready: {}); run.mcap misses their "
+                "samples until they match",
+                recorder_->missing(), not_ready());
       return;
     }
     const std::size_t now_matched = recorder_->matched_writers(comm::topic::kAgentReply).size();

@@ -217,6 +217,26 @@ TEST(Agent, TakingOnlyTheFilteredTicksGivesTheSameAnswersAsTakingEvery) {
   EXPECT_LT(taken, ticks * 3 / 4);
 }
 
+TEST(Agent, ATickLostDuringACentralOutageDoesNotRestartTheSafeStopRamp) {
+  // A gap the tick filter did not make (a lost tick) inside an outage of central: the agent goes
+  // on with its ramp, not from the reference of the tick before.
+  const AgentConfig c = proportional();
+  AgentCore a(c);
+  const double ref = 20.0;
+  for (long long k = 1; k <= 10; ++k) a.step(still(k, ref, k - 1, k - 1));
+  AgentOutput out;
+  for (long long k = 11; k <= 131; ++k) {
+    if (k == 130) continue;  // lost
+    AgentInput in = still(k, ref, k - 1, 9);
+    in.phidot_ref_prev_rad_s = ref;  // what the plant holds from central's last command
+    out = a.step(in);
+  }
+  // 20 ramp steps of stop_decel / r * dt (0.57 rad/s each) from tick 111 on, less the lost one.
+  const double step = c.stop_decel_mps2 / c.wheel_radius_m * c.dt_s;
+  EXPECT_EQ(out.state, AgentState::kStopping);
+  EXPECT_NEAR(out.voltage_V, ref - 20 * step, 1e-9);
+}
+
 TEST(Agent, TheTickFilterDeliversWhatAnAgentNeeds) {
   namespace msg = maptr::msg;
   using maptr::comm::tick_wakes_agent;

@@ -100,6 +100,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
   std::set<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.insert(k);
   EXPECT_EQ(keys, (std::set<std::string>{"status",
+                                         "answers_taken",
                                          "sim_time_s",
                                          "ticks",
                                          "tick_hz",
