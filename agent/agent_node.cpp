@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include "agent/agent_input.hpp"
 #include "comm/follower.hpp"
 #include "comm/side.hpp"
 #include "config/scenario.hpp"
@@ -46,18 +47,8 @@ int AgentNode::run() {
   follower.answer_writer<msg::AgentReplyPubSubType>(comm::topic::kAgentReply);
   long long last_tick = -2;  // the tick answered or skipped last
   return follower.run([&](const msg::PlantTick& t) {
-    control::AgentInput in;
-    in.tick = static_cast<long long>(t.tick());
+    const control::AgentInput in = agent_input(t, side_, index_);
     const msg::SideTick& own = t.sides()[side_];
-    in.phidot_rad_s = own.phidot();
-    in.battery_V = own.battery_V();
-    in.side_active_V = own.V_active();
-    in.phidot_ref_rad_s = own.phidot_ref();
-    in.central_stamp = t.central_stamp();
-    in.group_stamp = own.group_stamp();
-    in.assigned = own.active()[index_] != 0;
-    in.phidot_prev_rad_s = own.phidot_prev();
-    in.phidot_ref_prev_rad_s = own.phidot_ref_prev();
     const control::AgentOutput out = core_.step(in);
     msg::AgentReply rep;
     rep.tick(t.tick());

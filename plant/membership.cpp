@@ -128,12 +128,6 @@ std::vector<uint8_t> Membership::live_mask(int side) const {
   return m;
 }
 
-std::vector<uint8_t> Membership::rejoining_mask(int side) const {
-  std::vector<uint8_t> m(per_side_);
-  for (int j = 0; j < per_side_; ++j) m[j] = agents_[side][j].rejoining ? 1 : 0;
-  return m;
-}
-
 std::vector<uint8_t> Membership::paused_mask() const {
   std::vector<uint8_t> out;
   out.reserve(all_.size());

@@ -93,8 +93,6 @@ class Membership {
 
   /// 1 per live agent of a side.
   std::vector<uint8_t> live_mask(int side) const;
-  /// 1 per agent of a side rejoining (restarted or resumed, not heard yet): waited for.
-  std::vector<uint8_t> rejoining_mask(int side) const;
   /// 1 per member paused by the launcher, in the order of all().
   std::vector<uint8_t> paused_mask() const;
   int live_count(int side) const;

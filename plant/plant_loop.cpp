@@ -205,10 +205,13 @@ void PlantLoop::set_wake() {
   const long long k = static_cast<long long>(sent_.tick());
   for (int s = 0; s < 2; ++s) {
     msg::SideTick& side = sent_.sides()[s];
-    std::vector<uint8_t> wake = membership_.rejoining_mask(s);
-    for (int j = 0; j < per_side_; ++j)
-      if (side.active()[static_cast<std::size_t>(j)] != 0 || comm::idle_answer_due(k, s, j, per_side_)) wake[static_cast<std::size_t>(j)] = 1;
-    side.wake(std::move(wake));
+    auto& wake = side.wake();  // filled in place: no allocation per tick
+    wake.resize(static_cast<std::size_t>(per_side_));
+    for (int j = 0; j < per_side_; ++j) {
+      const auto i = static_cast<std::size_t>(j);
+      wake[i] = side.active()[i] != 0 || comm::idle_answer_due(k, s, j, per_side_) ||
+                membership_.at({Role::kAgent, s, j}).rejoining;
+    }
   }
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "agent/agent_input.hpp"
 #include "comm/lockstep.hpp"
 #include "comm/tick_check.hpp"
 #include "control/level1/agent_core.hpp"
@@ -172,21 +173,7 @@ maptr::msg::PlantTick side_tick(long long k) {
   return t;
 }
 
-AgentInput input_of(const maptr::msg::PlantTick& t, int side, int index) {
-  const auto& own = t.sides()[static_cast<std::size_t>(side)];
-  AgentInput in;
-  in.tick = static_cast<long long>(t.tick());
-  in.phidot_rad_s = own.phidot();
-  in.battery_V = own.battery_V();
-  in.side_active_V = own.V_active();
-  in.phidot_ref_rad_s = own.phidot_ref();
-  in.central_stamp = t.central_stamp();
-  in.group_stamp = own.group_stamp();
-  in.assigned = own.active()[static_cast<std::size_t>(index)] != 0;
-  in.phidot_prev_rad_s = own.phidot_prev();
-  in.phidot_ref_prev_rad_s = own.phidot_ref_prev();
-  return in;
-}
+using maptr::agent::agent_input;
 
 TEST(Agent, TakingOnlyTheFilteredTicksGivesTheSameAnswersAsTakingEvery) {
   // One agent takes every tick, the other only those the tick filter delivers
@@ -196,13 +183,13 @@ TEST(Agent, TakingOnlyTheFilteredTicksGivesTheSameAnswersAsTakingEvery) {
   const long long ticks = 2000;
   for (long long k = 0; k < ticks; ++k) {
     const auto t = side_tick(k);
-    const AgentOutput a = every.step(input_of(t, 0, 2));
+    const AgentOutput a = every.step(agent_input(t, 0, 2));
     if (!maptr::comm::tick_wakes_agent(t, 0, 2)) {
       ASSERT_FALSE(a.drives()) << "tick " << k << ": the filter held back a tick the agent drives in";
       continue;
     }
     ++taken;
-    const AgentOutput b = filtered.step(input_of(t, 0, 2));
+    const AgentOutput b = filtered.step(agent_input(t, 0, 2));
     ASSERT_EQ(a.voltage_V, b.voltage_V) << "tick " << k;
     ASSERT_EQ(a.current_A, b.current_A) << "tick " << k;
     ASSERT_EQ(a.state, b.state) << "tick " << k;
