@@ -34,7 +34,7 @@ TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
   auto* tick = p.topic<msg::PlantTickPubSubType>(topic::kTick);
   // An agent takes the ticks it needs only (comm/tick_filter.hpp), unless the run says otherwise.
   int side = 0, index = 0;
-  if (node_kind == msg::NODE_AGENT && args_.scenario.tick_filter && config::parse_agent_name(args_.name, side, index))
+  if (node_kind == msg::NODE_AGENT && args_.scenario.uses_tick_filter() && config::parse_agent_name(args_.name, side, index))
     p.reader(agent_tick_topic(p.raw(), tick, side, index), Profile::kStream, &ticks_);
   else
     p.reader(tick, Profile::kStream, &ticks_);

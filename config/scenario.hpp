@@ -90,7 +90,10 @@ struct Scenario {
   bool realtime = false;               ///< pace ticks to the wall clock
   int trace_every = 1;                 ///< write every n-th tick to trace.csv
   std::string record = "all";          ///< run.mcap: "all" topics, "plant" (ticks, gates, events), "none"
-  bool tick_filter = true;             ///< an agent takes only the ticks it answers (comm/tick_filter.hpp)
+  /// "auto" (on in ec, off in all), "true" or "false": an agent takes only the ticks it answers
+  /// (comm/tick_filter.hpp). In `all` every agent answers every tick, so a filter there only
+  /// costs the plant its evaluation and every tick its filter signatures (BENCHMARKS.md).
+  std::string tick_filter = "auto";
   double initial_discharge_mAh = 0.0;  ///< battery state at start (both groups), mAh
   /// End the run once the speed has stayed more than this many percent below its reference
   /// for 5 s after having reached it (0: never; the battery experiment runs until then).
@@ -102,6 +105,8 @@ struct Scenario {
   HostsConfig hosts;
 
   double dt() const { return 1.0 / tick_hz; }
+  /// Whether the plant filters the ticks it sends each agent (tick_filter resolved by mode).
+  bool uses_tick_filter() const { return tick_filter == "true" || (tick_filter == "auto" && mode == "ec"); }
   long long ticks() const;
   /// Checks every field against its range in the table, then the rules that tie fields
   /// together (wheel speed within the motors' reach, fault times within the run, ...).

@@ -50,9 +50,10 @@ Table<S> run_fields() {
       text<S>(
           "record", [](auto& s) -> auto& { return s.record; }, {"all", "plant", "none"},
           "run.mcap: all (every topic), plant (ticks, fault gates, membership, control, ready) or none"),
-      flag<S>(
-          "tick_filter", [](auto& s) -> auto& { return s.tick_filter; },
-          "an agent takes only the ticks it answers or needs (the plant's writer filters them; false: every tick)"),
+      text<S>(
+          "tick_filter", [](auto& s) -> auto& { return s.tick_filter; }, {"auto", "true", "false"},
+          "true: an agent takes only the ticks it answers or needs (the plant's writer filters them); "
+          "false: every tick; auto: true in ec, false in all (every agent answers every tick there)"),
       real<S>(
           "stop_below_speed_pct", [](auto& s) -> auto& { return s.stop_below_speed_pct; },
           Range{0, 100, false, true, false, 1}, "%",

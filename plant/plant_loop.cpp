@@ -61,9 +61,9 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
   tick_match_.only_fleet(args.dds.fleet_id);  // readers outside the fleet (a watcher) are no members
   // With the tick filter the writer evaluates each agent's filter and sends an agent only the
   // ticks it needs (comm/tick_filter.hpp).
-  if (sc_.tick_filter) comm::register_tick_filter(p_.raw(), &filter_gate_);
+  if (sc_.uses_tick_filter()) comm::register_tick_filter(p_.raw(), &filter_gate_);
   w_tick_ = p_.writer(p_.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match_,
-                      sc_.tick_filter ? comm::tick_filter_capacity(sc_.robot.agents) : 0);
+                      sc_.uses_tick_filter() ? comm::tick_filter_capacity(sc_.robot.agents) : 0);
   p_.reader(p_.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &replies_);
   p_.reader(p_.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), comm::Profile::kStream, &groups_);
   p_.reader(p_.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), comm::Profile::kStream,

@@ -17,7 +17,7 @@ struct BenchOptions {
   int hosts = 0;        ///< scale: also run each size on this many namespace hosts (0: one host only)
   bool realtime = false;  ///< pace the fleets' ticks to the wall clock (every tick starts from idle)
   std::string record = "all";  ///< what each fleet records in run.mcap: all, plant or none (a run's default: all)
-  bool tick_filter = true;     ///< an idle agent takes only the ticks it answers (a run's default: true)
+  std::string tick_filter = "auto";  ///< auto (a run's default: on in ec, off in all), true or false
 };
 
 int run_bench(const BenchOptions& o);

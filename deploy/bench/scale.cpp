@@ -163,7 +163,7 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"mode", mode},
       {"record", o.record},
       {"realtime", o.realtime ? "yes" : "no"},
-      {"tick_filter", o.tick_filter ? "yes" : "no"},
+      {"tick_filter", s.uses_tick_filter() ? "yes" : "no"},
       {"hosts", hosts},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},

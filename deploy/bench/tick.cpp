@@ -68,7 +68,7 @@ int bench_tick(const BenchOptions& o) {
   std::ostringstream md;
   md << "Lock-step tick, N = " << n << ", " << o.duration_s << " s simulated at 100 Hz ("
      << static_cast<long long>(sum.number_or(records::summary_key::kTicks, 0)) << " ticks, run.mcap records "
-     << o.record << (o.realtime ? ", paced to the wall clock" : "") << (o.tick_filter ? "" : ", tick filter off")
+     << o.record << (o.realtime ? ", paced to the wall clock" : "") << (s.uses_tick_filter() ? "" : ", tick filter off")
      << "), status "
      << sum.status() << "\n\n"
      << timing_md(sum) << "\nIPC floor (hub and " << floor.workers << " processes over pipes, "

@@ -111,7 +111,8 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
       ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
   run->add_option("--record", a.record, "what run.mcap records: all (default), plant or none");
   run->add_option("--tick-filter", a.tick_filter,
-                  "true (default): an idle agent takes only the ticks it answers; false: every tick");
+                  "auto (default): on in ec, off in all; true: an idle agent takes only the ticks it answers; "
+                  "false: every agent every tick");
   run->add_flag("--secure", a.secure,
                 "DDS Security: a private CA, one certificate and permissions per process, encrypted data");
   run->add_option("--hosts", a.hosts, "run the fleet on N hosts (network namespaces; needs root)")

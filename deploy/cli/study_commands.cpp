@@ -48,7 +48,9 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
               "pace the fleets' ticks to the wall clock, as `maptr run --realtime`: every tick starts "
               "from idle processes (the tick median is still publish to integration, without the pause)");
   c->add_option("--tick-filter", a.o.tick_filter,
-                "true (default, as `maptr run`): an idle agent takes only the ticks it answers; false: every tick");
+                "auto (default, as `maptr run`: on in ec, off in all); true: an idle agent takes only the ticks "
+                "it answers; false: every tick")
+      ->check(CLI::IsMember({"auto", "true", "false"}));
   c->add_flag("--replot", a.o.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
   return c;
 }

@@ -448,3 +448,12 @@ TEST(Scenario, SetFieldRefusesWhatTheFileWould) {
 }
 
 }  // namespace
+
+TEST(Scenario, TheTickFilterIsOnInEcAndOffInAllUnlessTheFileSaysOtherwise) {
+  EXPECT_TRUE(parse_scenario("mode: ec\n", "test.yaml").uses_tick_filter());
+  EXPECT_FALSE(parse_scenario("mode: all\n", "test.yaml").uses_tick_filter());
+  EXPECT_TRUE(parse_scenario("mode: all\ntick_filter: true\n", "test.yaml").uses_tick_filter());
+  EXPECT_FALSE(parse_scenario("mode: ec\ntick_filter: false\n", "test.yaml").uses_tick_filter());
+  EXPECT_TRUE(parse_scenario("mode: ec\ntick_filter: auto\n", "test.yaml").uses_tick_filter());
+  expect_refused("tick_filter: sometimes\n", "tick_filter", "sometimes");
+}
