@@ -163,6 +163,9 @@ int PlantLoop::report(bool stopped) {
   RunEnd e;
   e.stopped = stopped;
   for (int s = 0; s < 2; ++s) e.live_agents[s] = membership_.live_count(s);
+  for (const auto& id : membership_.all())
+    if (id.role != Role::kAgent && (!membership_.at(id).live || membership_.at(id).paused))
+      e.silent_controllers.push_back(member_name(id));
   e.reached_reference = core_.reached_reference();
   e.speed_lost = core_.speed_lost();
   e.ref_speed_mps = model::speed_from_rates({cmd_.ref[0], cmd_.ref[1]}, sc_.robot.wheel_radius_m);

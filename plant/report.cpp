@@ -35,6 +35,12 @@ std::string run_status(const RunEnd& e, double degraded_band_pct) {
   if (e.live_agents[0] == 0 || e.live_agents[1] == 0)
     return std::string("degraded: side ") + (e.live_agents[0] == 0 ? "L" : "R") +
            " has no live agent; the robot stopped";
+  if (!e.silent_controllers.empty()) {
+    std::string names;
+    for (const auto& n : e.silent_controllers) names += (names.empty() ? "" : ", ") + n;
+    return "degraded: " + names + " dead or paused at the end; " +
+           (e.silent_controllers.size() == 1 ? "its" : "their") + " agents ran on their own safe behaviour";
+  }
   if (e.reached_reference && !e.speed_lost) {  // a run too short to reach its speed is not degraded
     const double ref_v = e.ref_speed_mps;
     const double err = ref_v > 0.0 ? 100.0 * std::fabs(e.speed_mps - ref_v) / ref_v : 0.0;

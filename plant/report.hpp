@@ -37,11 +37,15 @@ struct RunEnd {
   bool speed_lost = false;
   double ref_speed_mps = 0.0;  ///< final body speed reference, m/s
   double speed_mps = 0.0;      ///< final body speed, m/s
+  /// Controllers ("central", "group-L", "group-R") dead or paused at the end: their agents were
+  /// left to their own safe behaviour (a ramp to a stop without central; hold, then coast,
+  /// without their group).
+  std::vector<std::string> silent_controllers;
 };
 
-/// "ok", "aborted: stop signal", or "degraded: ..." when a side has no live agent or the run
-/// ended more than degraded_band_pct off its reference speed (a run that never reached its
-/// speed, or that ended for a lost speed, is not judged on it).
+/// "ok", "aborted: stop signal", or "degraded: ..." when a side has no live agent, a controller
+/// was dead or paused at the end, or the run ended more than degraded_band_pct off its reference
+/// speed (a run that never reached its speed, or that ended for a lost speed, is not judged on it).
 std::string run_status(const RunEnd& e, double degraded_band_pct);
 bool aborted(const std::string& status);
 

@@ -222,6 +222,19 @@ TEST(Faults, KilledCentralMakesTheAgentsStopSafelyAndARestartedOneResumes) {
   EXPECT_NE(event_of(r.summary, "central", "rejoined"), nullptr);
 }
 
+TEST(Faults, ACentralKilledForGoodDegradesTheRunAndSaysWhy) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  // Without central the agents ramp their reference to zero and the robot coasts: it slows
+  // only by friction, so 2 s after the kill the speed alone is still within the 5 % band (the
+  // status was "ok" before the plant looked at its controllers).
+  auto r = run_cli(run_args(out, {"--duration", "14", "--kill", "central@12"}), out, 300);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  const std::string status = r.summary["status"];
+  EXPECT_EQ(status, "degraded: central dead or paused at the end; its agents ran on their own safe behaviour");
+  EXPECT_NE(r.output.find("central dead or paused at the end"), std::string::npos) << r.output;
+}
+
 TEST(Faults, KilledPlantEndsTheRunWithAClearErrorAndKeepsTheTrace) {
   TempDir tmp;
   const std::string out = tmp.path() + "/run";

@@ -40,6 +40,17 @@ TEST(PlantReport, SideWithoutLiveAgentDegrades) {
   EXPECT_EQ(run_status(e, 5.0), "degraded: side L has no live agent; the robot stopped");
 }
 
+TEST(PlantReport, AControllerDeadOrPausedAtTheEndDegrades) {
+  RunEnd e = healthy();
+  e.silent_controllers = {"central"};
+  EXPECT_EQ(run_status(e, 5.0), "degraded: central dead or paused at the end; its agents ran on their own safe behaviour");
+  e.silent_controllers = {"group-L", "central"};
+  EXPECT_EQ(run_status(e, 5.0),
+            "degraded: group-L, central dead or paused at the end; their agents ran on their own safe behaviour");
+  e.live_agents[0] = 0;  // a side without agents says more
+  EXPECT_EQ(run_status(e, 5.0), "degraded: side L has no live agent; the robot stopped");
+}
+
 TEST(PlantReport, EndingOffTheReferenceSpeedDegrades) {
   RunEnd e = healthy();
   e.speed_mps = 0.94;  // 6 % below
