@@ -1,12 +1,13 @@
 #pragma once
-// `maptr bench scale` and `maptr bench tick`: measurements of the distributed system itself.
+// `maptr bench scale`, `tick` and `floor`: measurements of the distributed system itself and of
+// the machine's IPC floor.
 #include <string>
 #include <vector>
 
 namespace maptr::deploy {
 
 struct BenchOptions {
-  std::string what;  ///< "scale" | "tick"
+  std::string what;  ///< "scale" | "tick" | "floor"
   std::vector<int> agents{4, 8, 16, 32, 64, 128, 256};
   std::vector<std::string> modes{"ec", "all"};  ///< scale: control modes, each at every size
   double duration_s = 30.0;                     ///< simulated seconds per run
@@ -17,6 +18,7 @@ struct BenchOptions {
   int hosts = 0;        ///< scale: also run each size on this many namespace hosts (0: one host only)
   bool realtime = false;  ///< pace the fleets' ticks to the wall clock (every tick starts from idle)
   std::string record = "all";  ///< what each fleet records in run.mcap: all, plant or none (a run's default: all)
+  std::vector<int> touch_kb{0, 128, 512};  ///< floor: KiB each worker touches per round
   std::string tick_filter = "auto";  ///< auto (a run's default: on in ec, off in all), true or false
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// The two benches of `maptr bench`, each on its own fleets (launched in child processes).
+// The three benches of `maptr bench`, each on its own fleets (launched in child processes).
 #include "config/scenario.hpp"
 #include "deploy/bench/bench.hpp"
 
@@ -10,5 +10,9 @@ int bench_scale(const BenchOptions& o);
 
 /// `maptr bench tick`: one fleet; the plant's tick timing as tick.md and tick.json.
 int bench_tick(const BenchOptions& o);
+
+/// `maptr bench floor`: the IPC floor of each size with each working set per process;
+/// floor.csv, floor.md, floor.png (no fleet).
+int bench_floor(const BenchOptions& o);
 
 }  // namespace maptr::deploy

@@ -30,10 +30,19 @@ double cpu_us(pid_t pid) {
   return c ? c->cpu_s * 1e6 : 0.0;
 }
 
-[[noreturn]] void worker(int in, int out) {
+constexpr std::size_t kCacheLine = 64;
+constexpr std::size_t kKiB = 1024;
+
+[[noreturn]] void worker(int in, int out, int touch_kb) {
   char buf[kMessageBytes];
-  while (read(in, buf, sizeof(buf)) == kMessageBytes)
+  // The working set, faulted in before the first round.
+  std::vector<unsigned char> mem(static_cast<std::size_t>(touch_kb) * kKiB, 1);
+  while (read(in, buf, sizeof(buf)) == kMessageBytes) {
+    for (std::size_t i = 0; i < mem.size(); i += kCacheLine) mem[i] = static_cast<unsigned char>(mem[i] + buf[0]);
     if (write(out, buf, sizeof(buf)) != kMessageBytes) break;
+  }
+  volatile unsigned char used = mem.empty() ? 0 : mem[0];  // the writes are read: the compiler keeps them
+  (void)used;
   _exit(0);
 }
 
@@ -48,7 +57,7 @@ struct Workers {
   }
 };
 
-void start(Workers& w, int n) {
+void start(Workers& w, int n, int touch_kb) {
   int answer[2];
   if (pipe(answer) != 0) throw std::runtime_error("floor probe: pipe() failed");
   w.from = answer[0];
@@ -61,7 +70,7 @@ void start(Workers& w, int n) {
       for (int fd : w.to) close(fd);
       close(p[1]);
       close(answer[0]);
-      worker(p[0], answer[1]);
+      worker(p[0], answer[1], touch_kb);
     }
     close(p[0]);
     w.to.push_back(p[1]);
@@ -99,10 +108,11 @@ std::pair<long, double> usage(const Workers& w) {
 
 }  // namespace
 
-FloorResult measure_floor(int workers, long rounds, long warmup) {
+FloorResult measure_floor(int workers, long rounds, long warmup, int touch_kb) {
   if (workers < 1 || rounds < 1) throw std::invalid_argument("floor probe: needs at least one worker and one round");
+  if (touch_kb < 0) throw std::invalid_argument("floor probe: the working set cannot be negative");
   Workers w;
-  start(w, workers);
+  start(w, workers, touch_kb);
   for (long r = 0; r < warmup; ++r) round_trip(w);
   const auto before = usage(w);
   std::vector<double> t(static_cast<std::size_t>(rounds));
@@ -111,6 +121,7 @@ FloorResult measure_floor(int workers, long rounds, long warmup) {
   std::sort(t.begin(), t.end());
   FloorResult f;
   f.workers = workers;
+  f.touch_kb = touch_kb;
   f.rounds = rounds;
   f.median_us = t[t.size() / 2];
   f.p99_us = t[static_cast<std::size_t>(0.99 * static_cast<double>(t.size() - 1))];

@@ -9,6 +9,7 @@ namespace maptr::deploy {
 
 struct FloorResult {
   int workers = 0;
+  int touch_kb = 0;                 ///< KiB each worker writes to (one byte per 64-byte line) per round
   long rounds = 0;                  ///< timed rounds (after warm-up)
   double median_us = 0.0;           ///< µs per round
   double p99_us = 0.0;              ///< µs
@@ -17,7 +18,9 @@ struct FloorResult {
 };
 
 /// Runs `rounds` timed rounds after `warmup` untimed ones; throws std::runtime_error when a
-/// pipe or a worker cannot be made.
-FloorResult measure_floor(int workers, long rounds = 2000, long warmup = 200);
+/// pipe or a worker cannot be made. touch_kb > 0 gives each worker a working set: before each
+/// answer it writes one byte in every 64-byte line of its own touch_kb KiB, as a process whose
+/// tick touches that much memory (what `maptr bench floor` varies).
+FloorResult measure_floor(int workers, long rounds = 2000, long warmup = 200, int touch_kb = 0);
 
 }  // namespace maptr::deploy

@@ -28,9 +28,16 @@ CLI::App* add_experiment_command(CLI::App& app, ExperimentArgs& a) {
 }
 
 CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
-  auto* c = app.add_subcommand("bench", "measure the distributed system: scale (N agents) or tick (latency)");
-  c->add_option("what", a.o.what, "scale or tick")->required()->check(CLI::IsMember({"scale", "tick"}));
-  c->add_option("--agents", a.agents, "comma-separated fleet sizes (scale) or one size (tick)");
+  auto* c = app.add_subcommand(
+      "bench", "measure the distributed system: scale (N agents), tick (latency) or floor (IPC floor, no DDS)");
+  c->add_option("what", a.o.what, "scale, tick or floor")
+      ->required()
+      ->check(CLI::IsMember({"scale", "tick", "floor"}));
+  c->add_option("--agents", a.agents, "comma-separated fleet sizes (scale, floor) or one size (tick)");
+  c->add_option("--touch-kb", a.o.touch_kb,
+                "floor: comma-separated KiB each process writes to per round (default 0,128,512)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 1 << 20));
   c->add_option("--duration", a.o.duration_s, "simulated seconds per run")->check(CLI::PositiveNumber);
   c->add_option("--out", a.o.out, "output folder (default runs/<date>-bench-<what>)");
   c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
@@ -74,9 +81,9 @@ int cmd_bench(BenchArgs a, const std::string& bin_dir) {
       try {
         std::size_t used = 0;
         a.o.agents.push_back(std::stoi(x, &used));
-        if (used != x.size()) throw std::invalid_argument(x);
+        if (used != x.size() || a.o.agents.back() < 1) throw std::invalid_argument(x);
       } catch (...) {
-        std::cerr << "maptr: --agents " << a.agents << ": '" << x << "' is not a number\n";
+        std::cerr << "maptr: --agents " << a.agents << ": '" << x << "' is not a positive number\n";
         return 2;
       }
     }

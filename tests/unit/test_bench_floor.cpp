@@ -20,6 +20,16 @@ TEST(BenchFloor, EveryWorkerAnswersEveryRoundAndBlocksInBetween) {
 TEST(BenchFloor, RefusesAnEmptyProbe) {
   EXPECT_THROW(measure_floor(0), std::invalid_argument);
   EXPECT_THROW(measure_floor(3, 0), std::invalid_argument);
+  EXPECT_THROW(measure_floor(3, 10, 1, -1), std::invalid_argument);
+}
+
+TEST(BenchFloor, WorkersWithAWorkingSetStillAnswerEveryRound) {
+  const FloorResult f = measure_floor(3, 200, 20, 256);
+  EXPECT_EQ(f.workers, 3);
+  EXPECT_EQ(f.touch_kb, 256);
+  EXPECT_EQ(f.rounds, 200);
+  EXPECT_GT(f.median_us, 0.0);
+  EXPECT_GE(f.ctx_switches_per_round, 3.0);
 }
 
 }  // namespace
