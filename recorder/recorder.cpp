@@ -24,6 +24,13 @@ constexpr const char* kLibrary = "maptr recorder";
 /// for every sample cost two context switches per sample (BENCHMARKS.md, "Recording").
 constexpr std::size_t kWakeBatch = 512;
 constexpr auto kWritePeriod = std::chrono::milliseconds(50);
+/// The samples reach the recorder one by one, and each one would wake its receive thread (a
+/// context switch per sample, about 7 µs of CPU on this kind of machine: BENCHMARKS.md). When
+/// a sample wakes the thread from a wait (none came for kIdleGap), the thread naps kNap first:
+/// the samples of the next ticks gather in the recorder's shared-memory port (its queue holds
+/// at least 8192, deploy/fleet/config.hpp) and are taken in one turn.
+constexpr auto kIdleGap = std::chrono::microseconds(100);
+constexpr auto kNap = std::chrono::milliseconds(1);
 
 uint64_t now_ns() {
   return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
@@ -57,10 +64,12 @@ class Recorder::Tap : public dds::DataReaderListener {
  public:
   Tap(Recorder& r, uint16_t channel) : r_(r), channel_(channel) {}
   void on_data_available(dds::DataReader* reader) override {
+    r_.nap_if_woken();
     comm::RawSample s;
     dds::SampleInfo info;
     while (reader->take_next_sample(&s, &info) == ReturnCode_t::RETCODE_OK)
       if (info.valid_data) r_.push(channel_, info.source_timestamp, std::move(s.bytes));
+    r_.taken();
   }
   /// For tests only: the first start's writer of this process is never counted as matched.
   void deaf_to(uint32_t fleet_id, int base_participant_id) {
@@ -123,6 +132,17 @@ Recorder::~Recorder() {
     stop();
   } catch (...) {
   }
+}
+
+void Recorder::nap_if_woken() {
+  const auto since = std::chrono::steady_clock::now().time_since_epoch() - std::chrono::nanoseconds(last_take_ns_.load());
+  if (since > kIdleGap) std::this_thread::sleep_for(kNap);
+}
+
+void Recorder::taken() {
+  last_take_ns_.store(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::steady_clock::now().time_since_epoch())
+                          .count());
 }
 
 void Recorder::push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes) {

@@ -73,6 +73,10 @@ class Recorder {
   };
   class Tap;
   void push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes);
+  /// On a receive thread, before it takes: naps when a sample woke it from a wait.
+  void nap_if_woken();
+  /// On a receive thread, after it took.
+  void taken();
   void write_loop();
 
   std::vector<comm::FleetTopic> topics_;
@@ -87,6 +91,7 @@ class Recorder {
   bool stopping_ = false;
   std::thread writer_;
   std::string missing_;
+  std::atomic<int64_t> last_take_ns_{0};  ///< steady clock, when a receive thread last took
 };
 
 }  // namespace maptr::recorder
