@@ -46,6 +46,7 @@ int AgentNode::run() {
   comm::TickFollower follower(args_, msg::NODE_AGENT, log_);
   follower.answer_writer<msg::AgentReplyPubSubType>(comm::topic::kAgentReply);
   long long last_tick = -2;  // the tick answered or skipped last
+  const auto pid = static_cast<uint32_t>(getpid());
   return follower.run([&](const msg::PlantTick& t) {
     const control::AgentInput in = agent_input(t, side_, index_);
     const msg::SideTick& own = t.sides()[side_];
@@ -54,7 +55,7 @@ int AgentNode::run() {
     rep.tick(t.tick());
     rep.side(comm::to_msg_side(side_));
     rep.index(static_cast<uint16_t>(index_));
-    rep.pid(static_cast<uint32_t>(getpid()));
+    rep.pid(pid);
     rep.voltage_V(out.voltage_V);
     rep.current_A(out.current_A);
     rep.efficiency(out.efficiency);

@@ -216,22 +216,24 @@ class Direct : public Inbox<T> {
       Inbox<T>::on_data_available(reader);
       return;
     }
-    T sample;
     eprosima::fastdds::dds::SampleInfo info;
     t_deserialize_failed = false;
-    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+    // One sample object for every take: deserializing into it keeps the capacity of its
+    // sequences, so a tick costs no allocation (every field is written by each deserialize).
+    while (reader->take_next_sample(&sample_, &info) == ReturnCode_t::RETCODE_OK) {
       if (last_deserialize_failed()) {
         Inbox<T>::count_undecodable();
         t_deserialize_failed = false;
         continue;
       }
-      if (info.valid_data) handler_(sample, info.publication_handle);
+      if (info.valid_data) handler_(sample_, info.publication_handle);
     }
   }
 
  private:
   std::mutex handler_m_;
   Handler handler_;
+  T sample_;  ///< guarded by handler_m_
 };
 
 /// Writer listener that counts matched readers. After only_fleet(id) (before the writer is

@@ -4,8 +4,11 @@
 #include <spdlog/sinks/stdout_sinks.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
+#include <sched.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -21,6 +24,17 @@ std::atomic<bool>& stop_flag() {
   std::signal(SIGTERM, on_signal);
   std::signal(SIGINT, on_signal);
   return g_stop;
+}
+
+std::string make_thread_realtime(int priority) {
+  if (priority <= 0) return "normal";
+  const std::string wanted = "SCHED_FIFO " + std::to_string(priority);
+  sched_param p{};
+  p.sched_priority = priority;
+  // pid 0: the calling thread only (Linux schedules threads one by one).
+  if (sched_setscheduler(0, SCHED_FIFO | SCHED_RESET_ON_FORK, &p) != 0)
+    return "normal (" + wanted + " refused: " + std::strerror(errno) + ")";
+  return wanted;
 }
 
 ProcessArgs parse_process_args(int argc, char** argv, const std::string& what) {

@@ -33,6 +33,13 @@ std::shared_ptr<spdlog::logger> make_logger(const ProcessArgs& a);
 /// Installs SIGTERM/SIGINT handlers that set the returned flag.
 std::atomic<bool>& stop_flag();
 
+/// Puts the calling thread (only it) under SCHED_FIFO at `priority` (1 to 99), with
+/// SCHED_RESET_ON_FORK: a thread or process it creates later runs under normal scheduling.
+/// Priority 0 leaves it as it is. Needs CAP_SYS_NICE (root) or an RLIMIT_RTPRIO of at least
+/// `priority`; without, the thread stays as it is. Returns what the thread runs under, e.g.
+/// "SCHED_FIFO 1" or "normal (SCHED_FIFO 1 refused: Operation not permitted)".
+std::string make_thread_realtime(int priority);
+
 }  // namespace maptr::comm
 
 namespace maptr::comm {

@@ -94,6 +94,11 @@ struct Scenario {
   /// (comm/tick_filter.hpp). In `all` every agent answers every tick, so a filter there only
   /// costs the plant its evaluation and every tick its filter signatures (BENCHMARKS.md).
   std::string tick_filter = "auto";
+  /// SCHED_FIFO priority of the plant's lock-step thread (comm::make_thread_realtime), which
+  /// integrates and publishes each tick and sleeps while the answers come: the agents it wakes
+  /// then no longer preempt it halfway through a publish. 0: normal scheduling. Without the
+  /// privilege the plant runs normally and says so (plant.json `loop_scheduling`).
+  int plant_priority = 1;
   double initial_discharge_mAh = 0.0;  ///< battery state at start (both groups), mAh
   /// End the run once the speed has stayed more than this many percent below its reference
   /// for 5 s after having reached it (0: never; the battery experiment runs until then).

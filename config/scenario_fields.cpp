@@ -54,6 +54,11 @@ Table<S> run_fields() {
           "tick_filter", [](auto& s) -> auto& { return s.tick_filter; }, {"auto", "true", "false"},
           "true: an agent takes only the ticks it answers or needs (the plant's writer filters them); "
           "false: every tick; auto: true in ec, false in all (every agent answers every tick there)"),
+      integer<S>(
+          "plant_priority", [](auto& s) -> auto& { return s.plant_priority; }, closed(0, 99),
+          "SCHED_FIFO priority of the plant's lock-step thread (integrate and publish; it sleeps while "
+          "the answers come), so that the agents it wakes do not preempt it in a publish; 0: normal "
+          "scheduling. Needs root or an rtprio limit, else the plant runs normally and says so"),
       real<S>(
           "stop_below_speed_pct", [](auto& s) -> auto& { return s.stop_below_speed_pct; },
           Range{0, 100, false, true, false, 1}, "%",

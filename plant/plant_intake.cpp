@@ -181,6 +181,7 @@ int PlantLoop::report(bool stopped) {
   in.rejected_by_process = rejects_by_process();
   in.late_samples = late_;
   in.missed_deadlines = missed_deadlines_;
+  in.loop_scheduling = scheduling_;
   in.tick_repairs = repairs_;
   if (filter_gate_.timeouts() > 0)
     log_.warn("{} tick writes went ahead of a filter change whose end was not signalled", filter_gate_.timeouts());

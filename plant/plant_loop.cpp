@@ -112,6 +112,15 @@ bool PlantLoop::discover() {
   return started;
 }
 
+void PlantLoop::set_scheduling(std::string what) {
+  scheduling_ = std::move(what);
+  if (scheduling_.rfind("normal (", 0) == 0)
+    log_.warn("lock-step thread: {}; the plant runs as any process (root or an rtprio limit allows it)",
+              scheduling_);
+  else
+    log_.info("lock-step thread: {}", scheduling_);
+}
+
 void PlantLoop::open_records() {
   files_ = open_csv_run_files(run_dir_ + "/trace.csv", run_dir_ + "/assignments.csv");
   wall0_ = Clock::now();

@@ -66,6 +66,9 @@ class PlantLoop {
   PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const PlantNodeConfig& c);
 
   bool discover();
+  /// What the calling thread, the lock-step thread, runs under (comm::make_thread_realtime):
+  /// logged and kept for plant.json.
+  void set_scheduling(std::string what);
   void open_records();
   /// True when the current tick is the last one to publish (duration reached or speed lost);
   /// stamps the membership records with its time and notes why the run ends.
@@ -147,6 +150,7 @@ class PlantLoop {
   Clock::time_point wall0_;
   std::string end_reason_ = "duration reached";
   uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;
+  std::string scheduling_ = "normal";  ///< what the lock-step thread runs under
   uint64_t late_ = 0;  ///< answers from their own sender to a tick before k - 1 (validation.hpp late())
   /// The first this many rejected (and late) samples are logged one by one.
   static constexpr uint64_t kRejectsLogged = 20;

@@ -12,6 +12,10 @@ int PlantNode::run() {
   auto& stop = comm::stop_flag();
   PlantLoop loop(args_, *log_, config_);
   if (!loop.discover()) return 0;
+  // This thread integrates and publishes each tick, and sleeps while the answers come. Under
+  // SCHED_FIFO the agents a publish wakes wait for its end instead of preempting it halfway
+  // (BENCHMARKS.md); the Fast DDS threads, made before, keep normal scheduling.
+  loop.set_scheduling(comm::make_thread_realtime(args_.scenario.plant_priority));
   loop.open_records();
   bool stopped = false;
   while (!stop.load()) {

@@ -95,6 +95,7 @@ nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
   j["rejected_by_process"] = in.rejected_by_process;
   j["late_samples"] = in.late_samples;
   j["missed_deadlines"] = in.missed_deadlines;
+  j["loop_scheduling"] = in.loop_scheduling;
   j["tick_repairs"] = in.tick_repairs;
   j["answers_taken"] = in.answers_taken;
   j["tick_timing_us"] = in.tick_timing_us;

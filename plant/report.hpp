@@ -66,6 +66,7 @@ struct ReportInputs {
   /// not used, and not counted among the rejected (which are malformed or forged).
   uint64_t late_samples = 0;
   uint64_t missed_deadlines = 0;
+  std::string loop_scheduling = "normal";  ///< what the lock-step thread ran under
   uint64_t tick_repairs = 0;  ///< ticks sent again because answers were missing (lost samples)
   /// Answers the plant used, by topic (each answers one tick of one member once).
   std::map<std::string, uint64_t> answers_taken;

@@ -20,6 +20,7 @@ struct BenchOptions {
   std::string record = "all";  ///< what each fleet records in run.mcap: all, plant or none (a run's default: all)
   std::vector<int> touch_kb{0, 128, 512};  ///< floor: KiB each worker touches per round
   std::string tick_filter = "auto";  ///< auto (a run's default: on in ec, off in all), true or false
+  int plant_priority = -1;  ///< SCHED_FIFO priority of the plant's lock-step thread (-1: a run's default)
 };
 
 int run_bench(const BenchOptions& o);

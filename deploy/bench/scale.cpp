@@ -63,6 +63,7 @@ std::vector<report::Column> columns() {
   cols.push_back({"record", "run.mcap records", -1});
   cols.push_back({"realtime", "paced to the wall clock", -1});
   cols.push_back({"tick_filter", "tick filter", -1});
+  cols.push_back({"plant_scheduling", "plant lock-step thread", -1});
   return cols;
 }
 
@@ -118,6 +119,7 @@ config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string&
   s.record = o.record;
   s.realtime = o.realtime;
   s.tick_filter = o.tick_filter;
+  if (o.plant_priority >= 0) s.plant_priority = o.plant_priority;
   for (auto& seg : s.trajectory.segments)
     if (seg.type != "stop") seg.speed_mps = kScaleSpeed;
   if (s.trajectory.total_duration() < s.duration_s)
@@ -164,6 +166,7 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"record", o.record},
       {"realtime", o.realtime ? "yes" : "no"},
       {"tick_filter", s.uses_tick_filter() ? "yes" : "no"},
+      {"plant_scheduling", sum.data().value("plant", json::object()).value("loop_scheduling", "")},
       {"hosts", hosts},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},

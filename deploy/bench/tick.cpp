@@ -56,6 +56,7 @@ int bench_tick(const BenchOptions& o) {
   s.record = o.record;
   s.realtime = o.realtime;
   s.tick_filter = o.tick_filter;
+  if (o.plant_priority >= 0) s.plant_priority = o.plant_priority;
   s.validate();
   const std::string run_dir = o.out + "/runs/tick-N" + std::to_string(n);
   FleetCost cost;

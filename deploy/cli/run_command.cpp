@@ -113,6 +113,8 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--tick-filter", a.tick_filter,
                   "auto (default): on in ec, off in all; true: an idle agent takes only the ticks it answers; "
                   "false: every agent every tick");
+  run->add_option("--plant-priority", a.plant_priority,
+                  "SCHED_FIFO priority of the plant's lock-step thread, 1-99 (default 1); 0: normal scheduling");
   run->add_flag("--secure", a.secure,
                 "DDS Security: a private CA, one certificate and permissions per process, encrypted data");
   run->add_option("--hosts", a.hosts, "run the fleet on N hosts (network namespaces; needs root)")
@@ -140,7 +142,8 @@ Scenario scenario_from(const RunArgs& a) {
       {"--motor", "motor", &RunArgs::motor},             {"--mode", "mode", &RunArgs::mode},
       {"--duration", "duration_s", &RunArgs::duration},  {"--tick-hz", "tick_hz", &RunArgs::tick_hz},
       {"--trace-every", "trace_every", &RunArgs::trace_every}, {"--record", "record", &RunArgs::record},
-      {"--tick-filter", "tick_filter", &RunArgs::tick_filter}};
+      {"--tick-filter", "tick_filter", &RunArgs::tick_filter},
+      {"--plant-priority", "plant_priority", &RunArgs::plant_priority}};
   Scenario s = config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
   for (const auto& o : kOverrides)
     if (!(a.*o.value).empty()) config::set_field(s, o.path, a.*o.value, o.option);

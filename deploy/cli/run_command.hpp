@@ -13,7 +13,8 @@ namespace maptr::deploy::cli {
 /// exactly as it would be in the file.
 struct RunArgs {
   std::string scenario;
-  std::string agents, gross_kg, motor, mode, duration, speed, trace_every, tick_hz, record, tick_filter;
+  std::string agents, gross_kg, motor, mode, duration, speed, trace_every, tick_hz, record, tick_filter,
+      plant_priority;
   std::string out;
   bool realtime = false, quiet = false, secure = false;
   int domain = -1;

@@ -58,6 +58,10 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
                 "auto (default, as `maptr run`: on in ec, off in all); true: an idle agent takes only the ticks "
                 "it answers; false: every tick")
       ->check(CLI::IsMember({"auto", "true", "false"}));
+  c->add_option("--plant-priority", a.o.plant_priority,
+                "SCHED_FIFO priority of the plant's lock-step thread, 1-99 (default: a run's, 1); 0: normal "
+                "scheduling")
+      ->check(CLI::Range(0, 99));
   c->add_flag("--replot", a.o.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
   return c;
 }

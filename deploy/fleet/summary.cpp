@@ -214,6 +214,10 @@ std::string human_summary(const nlohmann::json& s) {
                 s["processes"].empty() ? 0.0 : rss_sum / 1024.0 / s["processes"].size(),
                 s.value("trace_sha256", "").c_str());
   os << buf;
+  // The plant's lock-step thread without its real-time priority (no privilege): said once here.
+  const std::string sched =
+      s.contains("plant") && s["plant"].is_object() ? s["plant"].value("loop_scheduling", "") : "";
+  if (sched.rfind("normal (", 0) == 0) os << "plant       lock-step thread " << sched << "\n";
   const nlohmann::json incomplete =
       s.contains("recording") && s["recording"].is_object()
           ? s["recording"].value("incomplete", nlohmann::json::object())

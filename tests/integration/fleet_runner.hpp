@@ -3,7 +3,10 @@
 // private DDS domain, a temporary results folder, a wall-clock timeout after which the
 // launcher is killed by its PID (its children die with it), and the folder removed afterwards.
 #include <fcntl.h>
+#include <linux/capability.h>
 #include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -59,10 +62,24 @@ inline std::vector<std::string> run_args(const std::string& out, std::vector<std
   return a;
 }
 
+/// What a started `maptr` may do beside the default.
+enum class Privilege {
+  kAsIs,
+  /// No real-time scheduling for it and its children: CAP_SYS_NICE gone from the capability
+  /// bounding set (possible as root) and RLIMIT_RTPRIO 0, as for a user without either.
+  kNoRealtime,
+};
+
 /// Starts `maptr ARGS` in the background (output to OUT_LOG); returns its PID.
-inline pid_t start_cli(std::vector<std::string> args, const std::string& out_log) {
+inline pid_t start_cli(std::vector<std::string> args, const std::string& out_log,
+                       Privilege privilege = Privilege::kAsIs) {
   const pid_t pid = fork();
   if (pid == 0) {
+    if (privilege == Privilege::kNoRealtime) {
+      prctl(PR_CAPBSET_DROP, CAP_SYS_NICE, 0, 0, 0);  // refused without CAP_SETPCAP: then not held anyway
+      const rlimit none{0, 0};
+      setrlimit(RLIMIT_RTPRIO, &none);
+    }
     const int fd = open(out_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(fd, 1);
     dup2(fd, 2);
@@ -97,11 +114,12 @@ inline int wait_child(pid_t pid, double timeout_s) {
 }
 
 /// Runs `maptr ARGS` to its end (killed by its PID after timeout_s); output and summary.json.
-inline CliResult run_cli(std::vector<std::string> args, const std::string& run_dir, double timeout_s) {
+inline CliResult run_cli(std::vector<std::string> args, const std::string& run_dir, double timeout_s,
+                         Privilege privilege = Privilege::kAsIs) {
   CliResult r;
   r.run_dir = run_dir;
   const std::string log = run_dir + ".out";
-  const int code = wait_child(start_cli(std::move(args), log), timeout_s);
+  const int code = wait_child(start_cli(std::move(args), log, privilege), timeout_s);
   r.timed_out = code == kTimedOut;
   r.exit_code = r.timed_out ? -1 : code;
   std::ifstream in(log);

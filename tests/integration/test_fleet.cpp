@@ -107,6 +107,46 @@ TEST(Fleet, TheTickFilterChangesNothingButTheTicksIdleAgentsTake) {
   EXPECT_GE(few, 4) << "agents that took under 4/5 of the ticks with the filter";
 }
 
+TEST(Fleet, ThePlantsRealTimeThreadChangesNothingButItsScheduling) {
+  // The plant's lock-step thread under SCHED_FIFO (plant_priority 1, the default), under normal
+  // scheduling (0), and refused its priority (no CAP_SYS_NICE, no rtprio limit): the same trace
+  // bit for bit; plant.json says what the thread ran under, and a refusal is said in the summary.
+  TempDir tmp;
+  struct Case {
+    const char* name;
+    std::vector<std::string> extra;
+    maptr::testing::Privilege privilege;
+  };
+  const std::vector<Case> cases = {
+      {"fifo", {"--plant-priority", "1"}, maptr::testing::Privilege::kAsIs},
+      {"normal", {"--plant-priority", "0"}, maptr::testing::Privilege::kAsIs},
+      {"refused", {}, maptr::testing::Privilege::kNoRealtime}};
+  std::vector<std::string> sha, sched, output;
+  for (const auto& c : cases) {
+    const std::string out = tmp.path() + "/" + c.name;
+    std::vector<std::string> extra = {"--duration", "3", "--mode", "all"};
+    extra.insert(extra.end(), c.extra.begin(), c.extra.end());
+    auto r = run_cli(run_args(out, extra), out, 180, c.privilege);
+    ASSERT_FALSE(r.timed_out) << r.output;
+    ASSERT_EQ(r.exit_code, 0) << c.name << "\n" << r.output;
+    sha.push_back(r.summary["trace_sha256"]);
+    sched.push_back(r.summary["plant"]["loop_scheduling"]);
+    output.push_back(r.output);
+  }
+  EXPECT_EQ(sha[0].size(), 64u);
+  EXPECT_EQ(sha[0], sha[1]);
+  EXPECT_EQ(sha[0], sha[2]);
+  const std::string refused = "normal (SCHED_FIFO 1 refused: ";
+  if (geteuid() == 0)
+    EXPECT_EQ(sched[0], "SCHED_FIFO 1");
+  else  // an unprivileged user gets it only from an rtprio limit
+    EXPECT_TRUE(sched[0] == "SCHED_FIFO 1" || sched[0].rfind(refused, 0) == 0) << sched[0];
+  EXPECT_EQ(sched[1], "normal");
+  EXPECT_EQ(sched[2].rfind(refused, 0), 0u) << sched[2];
+  EXPECT_NE(output[2].find("plant       lock-step thread " + refused), std::string::npos) << output[2];
+  EXPECT_EQ(output[1].find("lock-step thread"), std::string::npos) << output[1];
+}
+
 TEST(Fleet, FourAndThirtyTwoAgents) {
   for (int n : {4, 32}) {
     TempDir tmp;

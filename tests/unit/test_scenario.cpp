@@ -457,3 +457,12 @@ TEST(Scenario, TheTickFilterIsOnInEcAndOffInAllUnlessTheFileSaysOtherwise) {
   EXPECT_TRUE(parse_scenario("mode: ec\ntick_filter: auto\n", "test.yaml").uses_tick_filter());
   expect_refused("tick_filter: sometimes\n", "tick_filter", "sometimes");
 }
+
+TEST(Scenario, ThePlantsLockStepThreadRunsAtFifoPriorityOneUnlessTold) {
+  EXPECT_EQ(parse_scenario("mode: ec\n", "test.yaml").plant_priority, 1);
+  EXPECT_EQ(parse_scenario("plant_priority: 0\n", "test.yaml").plant_priority, 0);
+  EXPECT_EQ(parse_scenario("plant_priority: 99\n", "test.yaml").plant_priority, 99);
+  expect_refused("plant_priority: 100\n", "plant_priority", "100");
+  expect_refused("plant_priority: -1\n", "plant_priority", "-1");
+  expect_refused("plant_priority: 1.5\n", "plant_priority", "1.5");
+}
