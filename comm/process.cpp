@@ -34,7 +34,13 @@ std::string make_thread_realtime(int priority) {
   // pid 0: the calling thread only (Linux schedules threads one by one).
   if (sched_setscheduler(0, SCHED_FIFO | SCHED_RESET_ON_FORK, &p) != 0)
     return "normal (" + wanted + " refused: " + std::strerror(errno) + ")";
-  return wanted;
+  const int cpu = sched_getcpu();
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  if (cpu >= 0) CPU_SET(cpu, &one);
+  if (cpu < 0 || sched_setaffinity(0, sizeof(one), &one) != 0)
+    return wanted + " (on any CPU: " + std::strerror(errno) + ")";
+  return wanted + " on CPU " + std::to_string(cpu);
 }
 
 ProcessArgs parse_process_args(int argc, char** argv, const std::string& what) {
