@@ -78,7 +78,14 @@ TEST(Top, OnceShowsTheKilledAgentDeadAndFifteenLive) {
                                    tmp.path() + "/out.log");
   ASSERT_TRUE(wait_for([&] { return !read_json(out + "/fleet.json").is_null(); }, 60));
   std::string screen;
-  const bool seen = wait_for([&] { return shows_l3_dead(screen = top_once(out)); }, 200);
+  // The dead cell comes with the plant's ticks, the event line with the launcher's membership
+  // event: two writers, so a snapshot may show one before the other. Wait for both.
+  const bool seen = wait_for(
+      [&] {
+        screen = top_once(out);
+        return shows_l3_dead(screen) && screen.find("L3 died") != std::string::npos;
+      },
+      200);
   kill(launcher, SIGINT);
   EXPECT_GE(wait_child(launcher, 120), 0);
   ASSERT_TRUE(seen) << screen;
