@@ -27,6 +27,10 @@ constexpr const char* kNetnsPrefix = "maptr-";
 constexpr int kBridgeHostByte = 254, kFirstHostByte = 1;
 /// Second and third byte of the 10/8 subnets: 10.(kSubnetA0 + k % kSubnetASpan).B.
 constexpr int kSubnetA0 = 200, kSubnetASpan = 50;
+/// Bridge port states (the kernel's BR_STATE_*). A disabled port neither takes nor sends frames
+/// and stays so; a bridge without STP turns a blocking port forwarding again at once.
+constexpr const char* kPortDisabled = "0";
+constexpr const char* kPortForwarding = "3";
 
 std::string netns_name(const std::string& tag, int i) {
   return kNetnsPrefix + tag + "-h" + std::to_string(i);
@@ -191,10 +195,22 @@ void NamespaceNet::remove() {
   }
 }
 
-void NamespaceNet::set_link(int host, bool up) {
+bool NamespaceNet::set_link(int host, bool up) {
   Host& h = hosts_.at(static_cast<std::size_t>(host));
-  run_tool({"ip", "link", "set", h.veth, up ? "up" : "down"});
+  // The host's port on the bridge is blocked or forwarding again, as a switch cuts a port: at
+  // once, both ways. Taking the veth down and up instead leaves the link dead for up to a second
+  // after the `up` (the kernel's link-watch batches carrier changes at most once a second), so
+  // the host came back late by a wall-clock amount, and at a simulated time that depended on
+  // the machine's speed.
+  const char* state = up ? kPortForwarding : kPortDisabled;
+  std::string out;
+  // (iproute2 6.1's `ip link set ... type bridge_slave state 0` leaves the state as it is.)
+  if (run_tool({"bridge", "link", "set", "dev", h.veth, "state", state}, &out) != 0) return false;
+  std::ifstream now("/sys/class/net/" + h.veth + "/brport/state");
+  std::string read;
+  if (!(now >> read) || read != state) return false;  // the kernel put it back: the cut did not happen
   h.partitioned = !up;
+  return true;
 }
 
 LinkBytes NamespaceNet::bytes(int host) const {

@@ -71,8 +71,8 @@ class NamespaceNet {
   const std::vector<Host>& hosts() const { return hosts_; }
   std::vector<Host>& hosts() { return hosts_; }
   const std::string& bridge_address() const { return bridge_address_; }
-  /// Takes the host's link down or up again.
-  void set_link(int host, bool up);
+  /// Cuts the host's link or links it again (false: the `ip` command failed; nothing changed).
+  bool set_link(int host, bool up);
   /// Bytes the host sent and received on its link so far.
   LinkBytes bytes(int host) const;
 

@@ -159,6 +159,11 @@ TEST_F(Hosts, PartitionedHostRejoinsAfterTheHeal) {
   const auto& s = r.summary;
   EXPECT_EQ(s["status"], "ok");
   for (const auto& name : on_host(s, "h2")) EXPECT_TRUE(rejoined(s, name)) << name << " did not rejoin";
+  // The cut holds until the heal: nobody answers from the cut-off host before it.
+  for (const auto& e : s["plant"]["membership_events"]) {
+    if (e["event"] != "rejoined") continue;
+    EXPECT_GE(e["t_s"].get<double>(), 20.0) << "through the cut: " << e.dump();
+  }
   ASSERT_EQ(s["failures"].size(), 2u);
   EXPECT_FALSE(s["failures"][1]["detected_s"].is_null()) << s["failures"].dump();
 }
