@@ -103,14 +103,16 @@ std::vector<std::string> Fleet::apply_host_fault(const config::FaultSpec& f, dou
     if (net_ && !net_->set_link(h, false)) log_.error("fault: host {}: its link could not be cut", host.name);
     host.lost = host.partitioned = true;
     log_.warn("fault: host {} killed at t={:.2f} s ({} processes)", host.name, at_s, killed.size());
-  } else if (f.action == "partition" && !host.partitioned && net_ && !net_->set_link(h, false)) {
-    a = {FaultAction::kSkip, "the link could not be cut (bridge link set ... state 0 failed)"};
   } else if (f.action == "partition" && !host.partitioned && net_) {
-    host.partitioned = true;
-    // The plant stops waiting for them at this tick; they are re-admitted when they answer again.
-    for (const auto& c : kids_)
-      if (c.host == h && c.running && &c != &kids_.front()) publish_member(c, msg::MEMBER_DIED);
-    log_.warn("fault: host {} cut off at t={:.2f} s", host.name, at_s);
+    if (net_->set_link(h, false)) {
+      host.partitioned = true;
+      // The plant stops waiting for them at this tick; they are re-admitted when they answer again.
+      for (const auto& c : kids_)
+        if (c.host == h && c.running && &c != &kids_.front()) publish_member(c, msg::MEMBER_DIED);
+      log_.warn("fault: host {} cut off at t={:.2f} s", host.name, at_s);
+    } else {
+      a = {FaultAction::kSkip, "the bridge did not take the cut (bridge link set ... state 0)"};
+    }
   } else if (f.action == "heal" && host.partitioned) {
     if (net_ && !net_->set_link(h, true)) log_.error("fault: host {}: its link could not be restored", host.name);
     host.partitioned = false;

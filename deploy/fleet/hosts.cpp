@@ -197,15 +197,11 @@ void NamespaceNet::remove() {
 
 bool NamespaceNet::set_link(int host, bool up) {
   Host& h = hosts_.at(static_cast<std::size_t>(host));
-  // The host's port on the bridge is blocked or forwarding again, as a switch cuts a port: at
-  // once, both ways. Taking the veth down and up instead leaves the link dead for up to a second
-  // after the `up` (the kernel's link-watch batches carrier changes at most once a second), so
-  // the host came back late by a wall-clock amount, and at a simulated time that depended on
-  // the machine's speed.
+  // The host's bridge port is disabled or forwarding again, as a switch cuts a port: at once,
+  // both ways. A veth taken down and up stays dead for a while after the `up` (docs/ARCHITECTURE.md,
+  // host faults); iproute2 6.1's `ip link set ... type bridge_slave state 0` changes nothing.
   const char* state = up ? kPortForwarding : kPortDisabled;
-  std::string out;
-  // (iproute2 6.1's `ip link set ... type bridge_slave state 0` leaves the state as it is.)
-  if (run_tool({"bridge", "link", "set", "dev", h.veth, "state", state}, &out) != 0) return false;
+  if (run_tool({"bridge", "link", "set", "dev", h.veth, "state", state}, nullptr) != 0) return false;
   std::ifstream now("/sys/class/net/" + h.veth + "/brport/state");
   std::string read;
   if (!(now >> read) || read != state) return false;  // the kernel put it back: the cut did not happen

@@ -71,7 +71,7 @@ class NamespaceNet {
   const std::vector<Host>& hosts() const { return hosts_; }
   std::vector<Host>& hosts() { return hosts_; }
   const std::string& bridge_address() const { return bridge_address_; }
-  /// Cuts the host's link or links it again (false: the `ip` command failed; nothing changed).
+  /// Cuts the host's link or links it again (false: the bridge did not take the change).
   bool set_link(int host, bool up);
   /// Bytes the host sent and received on its link so far.
   LinkBytes bytes(int host) const;
