@@ -3,6 +3,8 @@
 #include "deploy/fleet/hosts.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
+#include <sched.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -15,6 +17,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 extern char** environ;
 
@@ -25,6 +28,59 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 constexpr std::chrono::milliseconds kEndPoll{20};
 constexpr std::chrono::milliseconds kStopPoll{10};
+
+// A child is started with clone(CLONE_VM | CLONE_VFORK), as posix_spawn does, not with fork():
+// the launcher's address space (its DDS participant, the recorder's queues) is not copied, so
+// neither the launcher nor the child pays for the copy of its page tables, the copy-on-write
+// faults that follow (each with a TLB shoot-down on the launcher's other threads' core) and the
+// unmapping of the copy at exec (BENCHMARKS.md, "The launcher starts its children without
+// copying itself"). posix_spawn itself cannot set the parent-death signal. The child shares the
+// launcher's memory until exec, so it makes system calls only, and no signal handler of the
+// launcher runs in it: all signals stay blocked until its handlers are reset to the default.
+struct ChildStart {
+  char** argv;
+  char** envp;
+  const char* err_path;
+  pid_t parent;
+  sigset_t mask;  // the launcher thread's signal mask, restored in the child before exec
+};
+
+int child_main(void* arg) {
+  const auto* s = static_cast<const ChildStart*>(arg);
+  for (int sig = 1; sig < NSIG; ++sig) {
+    struct sigaction sa {};
+    if (sigaction(sig, nullptr, &sa) != 0) continue;
+    const bool handled = (sa.sa_flags & SA_SIGINFO) != 0 || (sa.sa_handler != SIG_DFL && sa.sa_handler != SIG_IGN);
+    if (!handled) continue;
+    sa.sa_handler = SIG_DFL;
+    sa.sa_flags = 0;
+    sigaction(sig, &sa, nullptr);
+  }
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (getppid() != s->parent) _exit(1);
+  setpgid(0, 0);  // a Ctrl-C in the terminal reaches the launcher only; it ends the children
+  const int fd = open(s->err_path, O_WRONLY | O_CREAT | O_APPEND, 0644);
+  if (fd >= 0) {
+    dup2(fd, 1);
+    dup2(fd, 2);
+    close(fd);
+  }
+  sigprocmask(SIG_SETMASK, &s->mask, nullptr);
+  execvpe(s->argv[0], s->argv, s->envp);
+  _exit(127);
+}
+
+pid_t start_child(ChildStart& s) {
+  // The child runs on a stack of its own; the launcher's thread waits (CLONE_VFORK) until the
+  // child has called exec or exited, so the stack and `s` outlive the child's use of them.
+  static thread_local std::vector<char> stack(256 * 1024);
+  sigset_t all;
+  sigfillset(&all);
+  pthread_sigmask(SIG_BLOCK, &all, &s.mask);
+  const pid_t pid = clone(child_main, stack.data() + stack.size(), CLONE_VM | CLONE_VFORK | SIGCHLD, &s);
+  pthread_sigmask(SIG_SETMASK, &s.mask, nullptr);
+  return pid;
+}
 }  // namespace
 
 Exit exit_of(pid_t pid, int st, long max_rss_kB) {
@@ -54,8 +110,8 @@ std::string describe_end(const Child& c, const std::string& run_dir) {
 }
 
 void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id) {
-  // Everything the child needs is prepared before fork(): between fork and exec the child of
-  // a multi-threaded process may only make async-signal-safe calls (no allocation).
+  // Everything the child needs is prepared before it starts: until exec it shares the
+  // launcher's memory and may only make system calls (no allocation; start_child above).
   const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
   Environment own = env;
   for (const auto& [k, v] : c.host_env) own[k] = v;
@@ -74,22 +130,9 @@ void spawn(Child& c, const std::string& run_dir, const Environment& env, int par
   envp.push_back(nullptr);
   for (auto& a : command) argv.push_back(a.data());
   argv.push_back(nullptr);
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed for " + c.name);
-  if (pid == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(1);
-    setpgid(0, 0);  // a Ctrl-C in the terminal reaches the launcher only; it ends the children
-    const int fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-      close(fd);
-    }
-    execvpe(argv[0], argv.data(), envp.data());
-    _exit(127);
-  }
+  ChildStart start{argv.data(), envp.data(), err_path.c_str(), getpid(), {}};
+  const pid_t pid = start_child(start);
+  if (pid < 0) throw std::runtime_error("cannot start " + c.name + " (clone failed)");
   c.pid = pid;
   c.running = true;
   c.exit_code = -1;
