@@ -1,5 +1,6 @@
 #pragma once
-// The launcher's child processes: started with fork/exec (dying with the launcher through
+// The launcher's child processes: started with clone(CLONE_VM | CLONE_VFORK) and exec, the
+// launcher's memory never copied (dying with the launcher through
 // PR_SET_PDEATHSIG, in a process group of their own, stdout and stderr to
 // RUN_DIR/logs/NAME.stderr, the fleet's environment plus MAPTR_PARTICIPANT_ID), reaped with
 // wait4 (exit code, signal, peak resident memory), and ended at the end of a run.
