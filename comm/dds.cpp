@@ -3,6 +3,7 @@
 #include "comm/fleet_guid.hpp"
 #include "comm/security.hpp"
 #include "comm/shm_files.hpp"
+#include "comm/udp_ports.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
@@ -250,9 +251,35 @@ dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterLi
     q.writer_resource_limits().reader_filters_allocation.initial = static_cast<size_t>(reader_filters);
     q.writer_resource_limits().reader_filters_allocation.maximum = static_cast<size_t>(reader_filters);
   }
+  if (p == Profile::kLatched) add_latched_ack_locator(q);
   auto* w = pub_->create_datawriter(t, q, l, l ? dds::StatusMask::publication_matched() : dds::StatusMask::none());
   if (!w) throw std::runtime_error("cannot create writer on " + t->get_name());
   return w;
+}
+
+std::optional<rtps::Locator_t> metatraffic_udp_locator(const DdsOptions& o) {
+  if (o.participant_id < 0) return std::nullopt;
+  constexpr int kMetatrafficUnicastOffset = 10, kParticipantIdGain = 2;  // RTPS d1, PG
+  rtps::Locator_t loc;
+  loc.kind = LOCATOR_KIND_UDPv4;
+  rtps::IPLocator::setIPv4(loc, o.interface_address);
+  loc.port = static_cast<uint32_t>(rtps_domain_port_base(o.domain) + kMetatrafficUnicastOffset +
+                                   kParticipantIdGain * o.participant_id);
+  return loc;
+}
+
+void Participant::add_latched_ack_locator(dds::DataWriterQos& q) {
+  if (!o_.shm || !o_.shm_data_only || o_.is_server) return;  // UDP is among its locators already
+  if (!latched_ack_checked_) {
+    latched_ack_checked_ = true;
+    // Fast DDS moves a participant's ports when they are taken: only a port this process holds
+    // is announced (otherwise the writer keeps the participant's shared-memory locator).
+    const auto loc = metatraffic_udp_locator(o_);
+    if (loc && udp_port_bound_by(getpid(), static_cast<int>(loc->port))) latched_ack_ = loc;
+  }
+  if (!latched_ack_) return;
+  q.endpoint().unicast_locator_list.clear();
+  q.endpoint().unicast_locator_list.push_back(*latched_ack_);
 }
 
 dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::DataReaderListener* l) {

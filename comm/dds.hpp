@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -278,6 +279,11 @@ class Participant {
     return make_topic(name, ts);
   }
 
+  /// A latched writer of a participant whose user data is on shared memory only takes its
+  /// acknowledgements on the participant's UDP metatraffic port (latched_ack_locator()): a
+  /// reader that has UDP only (maptr top) can then acknowledge. A reliable Fast DDS writer sends
+  /// a late-joining reader neither the history nor new samples until that reader has
+  /// acknowledged once, and such a reader's acknowledgements to a shared-memory locator are lost.
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* t, Profile p,
                                              eprosima::fastdds::dds::DataWriterListener* l = nullptr);
   /// A writer that evaluates the content filters of up to `reader_filters` readers before it
@@ -296,12 +302,21 @@ class Participant {
 
  private:
   eprosima::fastdds::dds::Topic* make_topic(const std::string& name, eprosima::fastdds::dds::TypeSupport& ts);
+  /// Sets the UDP acknowledgement locator of a latched writer (see writer()) when this
+  /// participant's user data is on shared memory only and its metatraffic port is its own.
+  void add_latched_ack_locator(eprosima::fastdds::dds::DataWriterQos& q);
 
   DdsOptions o_;
+  bool latched_ack_checked_ = false;
+  std::optional<eprosima::fastrtps::rtps::Locator_t> latched_ack_;
   eprosima::fastdds::dds::DomainParticipant* dp_ = nullptr;
   eprosima::fastdds::dds::Publisher* pub_ = nullptr;
   eprosima::fastdds::dds::Subscriber* sub_ = nullptr;
 };
+
+/// The UDP locator of participant `participant_id`'s metatraffic unicast port on `o`'s domain and
+/// interface (RTPS port d1); none for an id Fast DDS picks itself (participant_id < 0).
+std::optional<eprosima::fastrtps::rtps::Locator_t> metatraffic_udp_locator(const DdsOptions& o);
 
 /// The unicast shared-memory locator Fast DDS uses for this host (port 0: the participant's own
 /// well-known port is filled in at creation).
