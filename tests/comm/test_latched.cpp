@@ -4,9 +4,7 @@
 // again on its DISABLED_ half), so nothing goes intraprocess; a discovery server in this process
 // connects the two.
 #include <gtest/gtest.h>
-#include <netinet/in.h>
 #include <poll.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,6 +19,7 @@
 
 #include "comm/dds.hpp"
 #include "idl/maptrPubSubTypes.h"
+#include "tests/bound_socket.hpp"
 
 namespace maptr::comm {
 namespace {
@@ -31,20 +30,6 @@ namespace dds = eprosima::fastdds::dds;
 constexpr int kWriterParticipantId = 3;
 /// Generous waits, s: discovery on a loaded machine takes seconds, not minutes.
 constexpr double kWait_s = 60.0;
-
-/// A UDP port of 127.0.0.1 that was free a moment ago.
-int free_udp_port() {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof(a);
-  if (fd < 0 || bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0 ||
-      getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0)
-    return -1;
-  close(fd);
-  return ntohs(a.sin_port);
-}
 
 DdsOptions client_options(int domain, const std::string& server) {
   DdsOptions o;
@@ -98,7 +83,7 @@ bool read_until(int fd, const std::string& want, std::string& seen) {
 
 TEST(LatchedWriter, AUdpOnlyReaderThatJoinsLateGetsTheHistoryOfASharedMemoryWriter) {
   const int domain = 170 + static_cast<int>(getpid()) % 25;
-  const int port = free_udp_port();
+  const int port = maptr::testing::BoundSocket().port;  // free a moment ago
   ASSERT_GT(port, 0);
   const std::string server = "127.0.0.1:" + std::to_string(port);
   DdsOptions so = client_options(domain, server);

@@ -6,28 +6,9 @@
 #include <unistd.h>
 
 #include "comm/udp_ports.hpp"
+#include "tests/bound_socket.hpp"
 
-namespace {
-
-/// A UDP socket on 127.0.0.1 with a port the kernel chooses.
-struct BoundSocket {
-  BoundSocket() : fd(socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0)) {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    socklen_t len = sizeof(a);
-    if (fd < 0 || bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0 ||
-        getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0)
-      return;
-    port = ntohs(a.sin_port);
-  }
-  ~BoundSocket() {
-    if (fd >= 0) close(fd);
-  }
-  int fd, port = 0;
-};
-
-}  // namespace
+using maptr::testing::BoundSocket;
 
 TEST(UdpPorts, ABoundPortIsListedAndIsThisProcesssUntilItIsClosed) {
   int port = 0;
