@@ -180,6 +180,13 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   }
   dp_ = dds::DomainParticipantFactory::get_instance()->create_participant(o.domain, q);
   if (!dp_) throw std::runtime_error("cannot create DDS participant '" + name + "' on domain " + std::to_string(o.domain));
+  // Latched writers' acknowledgement locator (writer()); a participant with UDP data locators
+  // needs none. Fast DDS moves a participant's ports when they are taken: only a port this
+  // process holds is announced.
+  if (o.shm && o.shm_data_only && !o.is_server) {
+    const auto loc = metatraffic_udp_locator(o);
+    if (loc && udp_port_bound_by(getpid(), static_cast<int>(loc->port))) latched_ack_ = loc;
+  }
   pub_ = dp_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   sub_ = dp_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
   if (!pub_ || !sub_) throw std::runtime_error("cannot create DDS publisher/subscriber for '" + name + "'");
@@ -259,24 +266,14 @@ dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterLi
 
 std::optional<rtps::Locator_t> metatraffic_udp_locator(const DdsOptions& o) {
   if (o.participant_id < 0) return std::nullopt;
-  constexpr int kMetatrafficUnicastOffset = 10, kParticipantIdGain = 2;  // RTPS d1, PG
   rtps::Locator_t loc;
   loc.kind = LOCATOR_KIND_UDPv4;
   rtps::IPLocator::setIPv4(loc, o.interface_address);
-  loc.port = static_cast<uint32_t>(rtps_domain_port_base(o.domain) + kMetatrafficUnicastOffset +
-                                   kParticipantIdGain * o.participant_id);
+  loc.port = static_cast<uint32_t>(rtps_metatraffic_unicast_port(o.domain, o.participant_id));
   return loc;
 }
 
-void Participant::add_latched_ack_locator(dds::DataWriterQos& q) {
-  if (!o_.shm || !o_.shm_data_only || o_.is_server) return;  // UDP is among its locators already
-  if (!latched_ack_checked_) {
-    latched_ack_checked_ = true;
-    // Fast DDS moves a participant's ports when they are taken: only a port this process holds
-    // is announced (otherwise the writer keeps the participant's shared-memory locator).
-    const auto loc = metatraffic_udp_locator(o_);
-    if (loc && udp_port_bound_by(getpid(), static_cast<int>(loc->port))) latched_ack_ = loc;
-  }
+void Participant::add_latched_ack_locator(dds::DataWriterQos& q) const {
   if (!latched_ack_) return;
   q.endpoint().unicast_locator_list.clear();
   q.endpoint().unicast_locator_list.push_back(*latched_ack_);

@@ -280,7 +280,7 @@ class Participant {
   }
 
   /// A latched writer of a participant whose user data is on shared memory only takes its
-  /// acknowledgements on the participant's UDP metatraffic port (latched_ack_locator()): a
+  /// acknowledgements on the participant's UDP metatraffic port (metatraffic_udp_locator()): a
   /// reader that has UDP only (maptr top) can then acknowledge. A reliable Fast DDS writer sends
   /// a late-joining reader neither the history nor new samples until that reader has
   /// acknowledged once, and such a reader's acknowledgements to a shared-memory locator are lost.
@@ -304,11 +304,10 @@ class Participant {
   eprosima::fastdds::dds::Topic* make_topic(const std::string& name, eprosima::fastdds::dds::TypeSupport& ts);
   /// Sets the UDP acknowledgement locator of a latched writer (see writer()) when this
   /// participant's user data is on shared memory only and its metatraffic port is its own.
-  void add_latched_ack_locator(eprosima::fastdds::dds::DataWriterQos& q);
+  void add_latched_ack_locator(eprosima::fastdds::dds::DataWriterQos& q) const;
 
   DdsOptions o_;
-  bool latched_ack_checked_ = false;
-  std::optional<eprosima::fastrtps::rtps::Locator_t> latched_ack_;
+  std::optional<eprosima::fastrtps::rtps::Locator_t> latched_ack_;  ///< set at construction
   eprosima::fastdds::dds::DomainParticipant* dp_ = nullptr;
   eprosima::fastdds::dds::Publisher* pub_ = nullptr;
   eprosima::fastdds::dds::Subscriber* sub_ = nullptr;

@@ -78,8 +78,8 @@ std::set<int> rtps_ports(int domain, int max_participant_id) {
   const int base = rtps_domain_port_base(domain);
   std::set<int> ports = {base, base + 1};
   for (int id = 0; id <= max_participant_id; ++id) {
-    ports.insert(base + 10 + 2 * id);
-    ports.insert(base + 11 + 2 * id);
+    ports.insert(rtps_metatraffic_unicast_port(domain, id));
+    ports.insert(rtps_user_unicast_port(domain, id));
   }
   return ports;
 }

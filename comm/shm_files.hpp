@@ -33,6 +33,9 @@ ShmSweep remove_unused_shm_ports(const std::string& dir = "/dev/shm", double min
 /// RTPS well-known port mapping (PB 7400, DG 250, PG 2; d0 0, d1 10, d2 1, d3 11), which Fast
 /// DDS also uses to name its shared-memory ports. The first port of `domain`:
 inline int rtps_domain_port_base(int domain) { return 7400 + 250 * domain; }
+/// Participant `id`'s unicast ports on `domain`: metatraffic (d1) and user data (d3).
+inline int rtps_metatraffic_unicast_port(int domain, int id) { return rtps_domain_port_base(domain) + 10 + 2 * id; }
+inline int rtps_user_unicast_port(int domain, int id) { return rtps_domain_port_base(domain) + 11 + 2 * id; }
 
 /// The highest participant id whose ports on `domain` stay below 65536 (ids above about 120
 /// already use the next domains' port ranges, which is fine).

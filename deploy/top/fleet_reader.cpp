@@ -76,18 +76,14 @@ dds::DataReaderQos watch_qos(int depth) {
   return q;
 }
 
-/// RTPS unicast ports of participant `id`: metatraffic d0 + 2 id + d1 (10), user d0 + 2 id + d3 (11).
-constexpr int kMetatrafficOffset = 10, kUserOffset = 11, kPortsPerId = 2;
-
 /// A participant id of `domain` whose unicast ports are free, searched from the highest id
 /// down. Fast DDS would pick the lowest free id itself, but a fleet holds the lowest ids (and
 /// a large one more than Fast DDS's 100 port mutations skip); its restarts move up one window of
 /// ids at a time, so the top of the range is the last they reach.
 int free_participant_id(int domain) {
-  const int base = comm::rtps_domain_port_base(domain);
   for (int id = comm::rtps_max_participant_id(domain); id > 0; --id)
-    if (!comm::udp_port_listed(base + kMetatrafficOffset + kPortsPerId * id) &&
-        !comm::udp_port_listed(base + kUserOffset + kPortsPerId * id))
+    if (!comm::udp_port_listed(comm::rtps_metatraffic_unicast_port(domain, id)) &&
+        !comm::udp_port_listed(comm::rtps_user_unicast_port(domain, id)))
       return id;
   throw std::runtime_error("no free DDS participant id on domain " + std::to_string(domain));
 }

@@ -21,9 +21,6 @@ namespace maptr::top {
 
 namespace {
 
-/// RTPS ports of a domain: simple-discovery multicast d0 + 0, unicast metatraffic d0 + 2 id + 10
-/// and user data d0 + 2 id + 11.
-constexpr int kMulticastOffset = 0, kMetatrafficOffset = 10, kUserOffset = 11, kPortsPerId = 2;
 /// Participant ids probed: every process of a fleet or replay on the domain holds the lowest ones.
 constexpr int kProbedIds = 4;
 constexpr auto kReapPoll = std::chrono::milliseconds(20);
@@ -31,11 +28,11 @@ constexpr auto kReapPoll = std::chrono::milliseconds(20);
 }  // namespace
 
 bool domain_in_use(int domain) {
-  const int base = comm::rtps_domain_port_base(domain);
-  if (comm::udp_port_listed(base + kMulticastOffset)) return true;
+  if (comm::udp_port_listed(comm::rtps_domain_port_base(domain))) return true;  // simple-discovery multicast
   for (int id = 0; id < kProbedIds; ++id)
-    for (int offset : {kMetatrafficOffset, kUserOffset})
-      if (comm::udp_port_listed(base + offset + kPortsPerId * id)) return true;
+    if (comm::udp_port_listed(comm::rtps_metatraffic_unicast_port(domain, id)) ||
+        comm::udp_port_listed(comm::rtps_user_unicast_port(domain, id)))
+      return true;
   return false;
 }
 
