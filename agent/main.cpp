@@ -1,9 +1,14 @@
 // maptr_agent: one wheel-motor agent (Level 1). Usage: maptr_agent --id L3 --config ... --run-dir ...
+// `maptr_agent --zygote FD` serves the launcher as a zygote (comm/zygote.hpp): it forks loaded
+// copies of itself, each of which runs as `maptr_agent --id ...` would.
 #include <iostream>
 
 #include "agent/agent_node.hpp"
+#include "comm/zygote.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int agent_main(int argc, char** argv) {
   // --id is the agent's name (also its process name); rewrite it as --name for the shared parser.
   std::vector<char*> args(argv, argv + argc);
   std::string name_flag = "--name";
@@ -23,4 +28,16 @@ int main(int argc, char** argv) {
     log->critical("{}", e.what());
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int fd = maptr::comm::zygote_fd(argc, argv);
+  if (fd == -2) {
+    std::cerr << "maptr_agent: --zygote = " << argv[2] << ": expected a file descriptor number\n";
+    return 2;
+  }
+  if (fd >= 0) return maptr::comm::serve_zygote(fd, agent_main);
+  return agent_main(argc, argv);
 }

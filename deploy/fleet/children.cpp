@@ -1,6 +1,7 @@
 #include "deploy/fleet/children.hpp"
 
 #include "deploy/fleet/hosts.hpp"
+#include "deploy/fleet/zygote.hpp"
 
 #include <fcntl.h>
 #include <pthread.h>
@@ -42,6 +43,7 @@ struct ChildStart {
   char** envp;
   const char* err_path;
   pid_t parent;
+  int pass_fd;    // >= 0: handed to the child as its descriptor kPassedFd
   sigset_t mask;  // the launcher thread's signal mask, restored in the child before exec
 };
 
@@ -65,6 +67,7 @@ int child_main(void* arg) {
     dup2(fd, 2);
     close(fd);
   }
+  if (s->pass_fd >= 0 && dup2(s->pass_fd, kPassedFd) < 0) _exit(126);  // dup2 clears close-on-exec
   sigprocmask(SIG_SETMASK, &s->mask, nullptr);
   execvpe(s->argv[0], s->argv, s->envp);
   _exit(127);
@@ -109,29 +112,50 @@ std::string describe_end(const Child& c, const std::string& run_dir) {
   return why.empty() ? out : out + ": " + why;
 }
 
-void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id) {
-  // Everything the child needs is prepared before it starts: until exec it shares the
-  // launcher's memory and may only make system calls (no allocation; start_child above).
-  const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
+std::vector<std::string> child_environment(const Child& c, const Environment& env, int participant_id) {
   Environment own = env;
   for (const auto& [k, v] : c.host_env) own[k] = v;
   own["MAPTR_PARTICIPANT_ID"] = std::to_string(participant_id);
-  std::vector<std::string> env_store;
+  std::vector<std::string> out;
   for (char** e = environ; *e; ++e) {
     const std::string kv = *e;
-    if (!own.count(kv.substr(0, kv.find('=')))) env_store.push_back(kv);
+    if (!own.count(kv.substr(0, kv.find('=')))) out.push_back(kv);
   }
-  for (const auto& [k, v] : own) env_store.push_back(k + "=" + v);
+  for (const auto& [k, v] : own) out.push_back(k + "=" + v);
+  return out;
+}
+
+pid_t start_process(std::vector<std::string> argv, std::vector<std::string> env, const std::string& out_path,
+                    int pass_fd) {
+  // Everything the child needs is prepared before it starts: until exec it shares the
+  // launcher's memory and may only make system calls (no allocation; start_child above).
+  std::vector<char*> envp, args;
+  for (auto& e : env) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  for (auto& a : argv) args.push_back(a.data());
+  args.push_back(nullptr);
+  ChildStart start{args.data(), envp.data(), out_path.c_str(), getpid(), pass_fd, {}};
+  return start_child(start);
+}
+
+void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id, Zygote* zygote) {
+  const std::string err_path = run_dir + "/logs/" + c.name + ".stderr";
+  std::vector<std::string> env_list = child_environment(c, env, participant_id);
   std::vector<std::string> command = {c.binary};
   command.insert(command.end(), c.args.begin(), c.args.end());
-  if (!c.prefix.empty()) command = host_argv(c.prefix, own, c.binary, c.args);
-  std::vector<char*> envp, argv;
-  for (auto& e : env_store) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  for (auto& a : command) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  ChildStart start{argv.data(), envp.data(), err_path.c_str(), getpid(), {}};
-  const pid_t pid = start_child(start);
+  pid_t pid = -1;
+  // An agent on this machine is forked from the zygote when there is one (deploy/fleet/zygote.hpp);
+  // if the zygote is gone, it is started as any other child.
+  if (zygote && c.prefix.empty() && zygote->serves(c.binary)) pid = zygote->fork_copy(command, env_list, err_path);
+  if (pid <= 0) {
+    if (!c.prefix.empty()) {
+      Environment own = env;
+      for (const auto& [k, v] : c.host_env) own[k] = v;
+      own["MAPTR_PARTICIPANT_ID"] = std::to_string(participant_id);
+      command = host_argv(c.prefix, own, c.binary, c.args);
+    }
+    pid = start_process(std::move(command), std::move(env_list), err_path, -1);
+  }
   if (pid < 0) throw std::runtime_error("cannot start " + c.name + " (clone failed)");
   c.pid = pid;
   c.running = true;

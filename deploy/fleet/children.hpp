@@ -60,10 +60,26 @@ std::string describe_end(const Child& c, const std::string& run_dir);
 
 using Environment = std::map<std::string, std::string>;
 
+class Zygote;
+
 /// Starts c (again): its environment is the launcher's with env, c.host_env and
 /// MAPTR_PARTICIPANT_ID; with a command prefix (a host), through it (deploy/fleet/hosts.hpp).
-/// Throws std::runtime_error if fork fails.
-void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id);
+/// With a zygote of c's binary (deploy/fleet/zygote.hpp), forked from it, else clone and exec.
+/// Throws std::runtime_error if the start fails.
+void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id,
+           Zygote* zygote = nullptr);
+
+/// The environment c starts with: the launcher's, with env, c.host_env and MAPTR_PARTICIPANT_ID.
+std::vector<std::string> child_environment(const Child& c, const Environment& env, int participant_id);
+
+/// The descriptor number a child started with `pass_fd` finds it under.
+inline constexpr int kPassedFd = 3;
+
+/// Starts argv (argv[0] a path) as the launcher's child, with clone and exec: environment env,
+/// stdout and stderr appended to out_path, and, if pass_fd >= 0, that descriptor as kPassedFd.
+/// Returns its pid, or -1.
+pid_t start_process(std::vector<std::string> argv, std::vector<std::string> env, const std::string& out_path,
+                    int pass_fd);
 
 /// The next ended child of the launcher, without waiting; nullopt if none has ended.
 std::optional<Exit> reap_one();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -287,7 +288,7 @@ void Fleet::write_fleet() const {
 
 void Fleet::spawn_child(Child& c) {
   const int id = ids_.take(c.base_id, c.starts);
-  spawn(c, o_.run_dir, env_, id);
+  spawn(c, o_.run_dir, env_, id, c.kind == ChildKind::kAgent ? zygote_.get() : nullptr);
   // A plant started again (a rematch) has the next participant id of its window: from now on its
   // ticks and gates are the plant's (a secure plant's prefix names its certificate and stays).
   if (&c == &kids_.front() && !secure()) follow_plant(id);
@@ -319,7 +320,28 @@ void Fleet::print_external_commands() const {
   }
 }
 
+void Fleet::start_zygote() {
+  const char* how = std::getenv(kAgentStartEnv);
+  const std::string mode = how ? how : "zygote";
+  if (mode != "zygote" && mode != "exec")
+    throw std::invalid_argument(std::string(kAgentStartEnv) + " = " + mode + ": expected zygote or exec");
+  rec_.agent_start = "exec";
+  if (mode == "exec" || on_hosts()) return;
+  const auto agent = std::find_if(kids_.begin(), kids_.end(), [](const Child& c) { return c.kind == ChildKind::kAgent; });
+  if (agent == kids_.end()) return;
+  Child probe = *agent;
+  probe.name = "zygote";
+  zygote_ = Zygote::start(agent->binary, child_environment(probe, env_, 0), o_.run_dir + "/logs/zygote.stderr");
+  if (!zygote_) {
+    log_.warn("the agents' zygote did not start: agents start with exec");
+    return;
+  }
+  rec_.agent_start = "zygote";
+  log_.info("agents fork from a zygote (pid {})", zygote_->pid());
+}
+
 void Fleet::start_processes() {
+  start_zygote();
   waves_ = std::make_unique<LaunchWaves>(kids_.size(), kControllers,
                                          secure() ? cfg_.secure_wave_size : cfg_.wave_size, cfg_.wave_wait_s);
   spawn_wave(waves_->first());
@@ -441,6 +463,8 @@ void Fleet::end() {
   wait_all(kids_, cfg_.end_term_s, reap_expected);
   signal_all(kids_, SIGKILL);
   wait_all(kids_, cfg_.end_kill_s, reap_expected);
+  if (zygote_) log_.info("the zygote forked {} agents ({} requests failed)", zygote_->forked(), zygote_->failed());
+  zygote_.reset();
   stop_recorder();
   fifo_.reset();
   participant_.reset();

@@ -25,6 +25,7 @@
 #include "deploy/fleet/stall_watch.hpp"
 #include "deploy/fleet/summary.hpp"
 #include "deploy/fleet/waves.hpp"
+#include "deploy/fleet/zygote.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "recorder/recorder.hpp"
 
@@ -70,6 +71,8 @@ class Fleet {
   bool secure() const { return o_.secure; }
   void write_fleet() const;
   void spawn_child(Child& c);
+  /// Starts the agents' zygote, unless MAPTR_AGENT_START=exec or the fleet runs on hosts.
+  void start_zygote();
   /// Follows the ticks and gates of the plant participant with this id (plant_clock.hpp).
   void follow_plant(int participant_id);
   void spawn_wave(LaunchWaves::Range r);
@@ -120,6 +123,7 @@ class Fleet {
   eprosima::fastdds::dds::DataWriter* w_control_ = nullptr;
   std::vector<Child> kids_;
   std::unique_ptr<LaunchWaves> waves_;
+  std::unique_ptr<Zygote> zygote_;  ///< forks the agents on this machine (none: exec)
   std::unique_ptr<ControlFifo> fifo_;
   FaultSchedule schedule_;
   PlantClock clock_;

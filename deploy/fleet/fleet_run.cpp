@@ -59,6 +59,12 @@ void Fleet::reap(bool expected) {
 }
 
 void Fleet::on_exit(const Exit& e, bool expected) {
+  if (zygote_ && e.pid == zygote_->pid()) {
+    zygote_->lost();
+    log_.warn("the agents' zygote (pid {}) ended: exit {} signal {}; agents start with exec from now on", e.pid,
+              e.exit_code, e.signal);
+    return;
+  }
   for (auto& ds : ds_) {
     if (!ds->on_exit(e, expected)) continue;
     ds_paused_ = false;

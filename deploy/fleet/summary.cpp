@@ -147,6 +147,7 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["discovery_server_restarts"] = r.discovery_restarts;
   s["discovery_rematched"] = r.rematched;
   s["transport"] = r.transport;
+  s["agent_start"] = r.agent_start;
   nlohmann::json failures = r.failures;
   const nlohmann::json plant_events = plant.value("membership_events", nlohmann::json::array());
   analyse_faults(failures, plant_events, run_dir + "/trace.csv", sc.robot.wheel_radius_m);

@@ -23,6 +23,7 @@ struct RunRecord {
   int discovery_restarts = 0;
   std::vector<std::string> rematched;  ///< processes started again during discovery (not ready in time)
   std::string transport;                              ///< "shm" or "udp"
+  std::string agent_start;                            ///< "zygote" (forked) or "exec"
   long long chaos_seed = -1;                          ///< recorded when >= 0
   PlantState last_tick;                               ///< the plant's last tick the launcher saw
   nlohmann::json failures = nlohmann::json::array();  ///< the fault records
