@@ -61,15 +61,24 @@ int retry_domain(int domain, int agents) {
   return domain > 0 ? domain - 1 : domain;
 }
 
-/// Keeps the files of a first attempt in RUN/first-attempt/ (its logs and summary).
+/// Keeps the files of a first attempt in RUN/first-attempt/ (its logs and summary). The
+/// launcher's own log is copied, not moved: the launcher keeps writing to it, and the second
+/// attempt's lines belong in RUN/logs/launcher.log after the first attempt's.
 void keep_first_attempt(const std::string& run_dir) {
   namespace fs = std::filesystem;
   const fs::path keep = fs::path(run_dir) / "first-attempt";
-  fs::create_directories(keep);
-  for (const char* name : {"logs", "summary.json", "fleet.json"}) {
-    std::error_code ec;
-    if (fs::exists(fs::path(run_dir) / name)) fs::rename(fs::path(run_dir) / name, keep / name, ec);
+  const fs::path logs = fs::path(run_dir) / "logs";
+  fs::create_directories(keep / "logs");
+  std::error_code ec;
+  for (const auto& f : fs::directory_iterator(logs, ec)) {
+    std::error_code one;
+    if (f.path().filename() == "launcher.log")
+      fs::copy_file(f.path(), keep / "logs" / f.path().filename(), fs::copy_options::overwrite_existing, one);
+    else
+      fs::rename(f.path(), keep / "logs" / f.path().filename(), one);
   }
+  for (const char* name : {"summary.json", "fleet.json"})
+    if (fs::exists(fs::path(run_dir) / name)) fs::rename(fs::path(run_dir) / name, keep / name, ec);
 }
 
 }  // namespace

@@ -322,6 +322,17 @@ TEST(Fleet, ADiscoveryTimeoutIsRetriedOnceAndTheSummarySaysSo) {
   EXPECT_EQ(retry["first_status"].get<std::string>().rfind("aborted: discovery timed out", 0), 0u);
   EXPECT_NE(retry["domain"].get<int>(), retry["first_domain"].get<int>());
   EXPECT_TRUE(std::ifstream(out + "/first-attempt/summary.json").good());
-  EXPECT_TRUE(std::ifstream(out + "/first-attempt/logs/launcher.log").good() ||
-              std::ifstream(out + "/logs/launcher.log").good());
+  // Each attempt's process logs in its own folder; the launcher's log holds both attempts, and
+  // the first attempt's folder a copy of its part.
+  EXPECT_TRUE(std::ifstream(out + "/first-attempt/logs/plant.log").good());
+  EXPECT_TRUE(std::ifstream(out + "/logs/plant.log").good());
+  const auto launches = [](const std::string& path) {
+    std::ifstream f(path);
+    int n = 0;
+    for (std::string line; std::getline(f, line);)
+      if (line.find("] launching ") != std::string::npos) ++n;
+    return n;
+  };
+  EXPECT_EQ(launches(out + "/first-attempt/logs/launcher.log"), 1);
+  EXPECT_EQ(launches(out + "/logs/launcher.log"), 2) << "the retry's lines go to RUN/logs/launcher.log";
 }
