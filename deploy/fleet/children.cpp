@@ -112,10 +112,18 @@ std::string describe_end(const Child& c, const std::string& run_dir) {
   return why.empty() ? out : out + ": " + why;
 }
 
-std::vector<std::string> child_environment(const Child& c, const Environment& env, int participant_id) {
+namespace {
+/// What the launcher sets for c: env, c.host_env and MAPTR_PARTICIPANT_ID.
+Environment own_environment(const Child& c, const Environment& env, int participant_id) {
   Environment own = env;
   for (const auto& [k, v] : c.host_env) own[k] = v;
   own["MAPTR_PARTICIPANT_ID"] = std::to_string(participant_id);
+  return own;
+}
+}  // namespace
+
+std::vector<std::string> child_environment(const Child& c, const Environment& env, int participant_id) {
+  const Environment own = own_environment(c, env, participant_id);
   std::vector<std::string> out;
   for (char** e = environ; *e; ++e) {
     const std::string kv = *e;
@@ -148,12 +156,7 @@ void spawn(Child& c, const std::string& run_dir, const Environment& env, int par
   // if the zygote is gone, it is started as any other child.
   if (zygote && c.prefix.empty() && zygote->serves(c.binary)) pid = zygote->fork_copy(command, env_list, err_path);
   if (pid <= 0) {
-    if (!c.prefix.empty()) {
-      Environment own = env;
-      for (const auto& [k, v] : c.host_env) own[k] = v;
-      own["MAPTR_PARTICIPANT_ID"] = std::to_string(participant_id);
-      command = host_argv(c.prefix, own, c.binary, c.args);
-    }
+    if (!c.prefix.empty()) command = host_argv(c.prefix, own_environment(c, env, participant_id), c.binary, c.args);
     pid = start_process(std::move(command), std::move(env_list), err_path, -1);
   }
   if (pid < 0) throw std::runtime_error("cannot start " + c.name + " (clone failed)");
