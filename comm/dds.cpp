@@ -47,6 +47,7 @@ uint64_t Signal::wait_until(uint64_t seen, std::chrono::steady_clock::time_point
 }
 
 void MatchCounter::on_publication_matched(dds::DataWriter*, const dds::PublicationMatchedStatus& s) {
+  readers_.changed(s.last_subscription_handle, s.current_count_change);
   if (fleet_id_ == 0)
     matched_.store(s.current_count);
   else if (fleet_participant(fleet_id_, s.last_subscription_handle) ||

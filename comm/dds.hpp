@@ -108,6 +108,25 @@ struct LivelinessEvent {
   bool alive = false;
 };
 
+/// The remote endpoints an endpoint is matched with now, kept from its match events (Fast DDS
+/// 2.9 does not implement get_matched_publications/subscriptions). Touched at a match only.
+class MatchedEndpoints {
+ public:
+  void changed(const eprosima::fastrtps::rtps::InstanceHandle_t& h, int32_t count_change) {
+    std::lock_guard<std::mutex> g(m_);
+    if (count_change > 0) now_.insert(h);
+    if (count_change < 0) now_.erase(h);
+  }
+  std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> now() const {
+    std::lock_guard<std::mutex> g(m_);
+    return {now_.begin(), now_.end()};
+  }
+
+ private:
+  mutable std::mutex m_;
+  std::set<eprosima::fastrtps::rtps::InstanceHandle_t> now_;
+};
+
 /// How an inbox wakes its loop when samples arrive.
 enum class Wake {
   kEach,     ///< at every batch of samples
@@ -147,6 +166,7 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
   void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
     matched_.store(s.current_count);
+    writers_.changed(s.last_publication_handle, s.current_count_change);
     if (s.current_count_change < 0) {
       // A writer went away: lost liveliness that removed its participant shows up here.
       std::lock_guard<std::mutex> g(m_);
@@ -177,6 +197,8 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
     return out;
   }
   int matched() const { return matched_.load(); }
+  /// The writers matched now (their handles hold their GUIDs).
+  std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> matched_writers() const { return writers_.now(); }
   /// Samples dropped so far because their payload did not deserialize.
   uint64_t undecodable() const { return undecodable_.load(); }
 
@@ -191,6 +213,7 @@ class Inbox : public eprosima::fastdds::dds::DataReaderListener {
   std::deque<LivelinessEvent> live_;
   std::atomic<int> matched_{0};
   std::atomic<uint64_t> undecodable_{0};
+  MatchedEndpoints writers_;
 };
 
 /// Reader listener that hands each valid sample straight to a handler on the DDS receive thread,
@@ -247,11 +270,14 @@ class MatchCounter : public eprosima::fastdds::dds::DataWriterListener {
   void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
                               const eprosima::fastdds::dds::PublicationMatchedStatus& s) override;
   int matched() const { return matched_.load(); }
+  /// The readers matched now, of the fleet or not (their handles hold their GUIDs).
+  std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> matched_readers() const { return readers_.now(); }
 
  private:
   Signal* signal_;
   uint32_t fleet_id_ = 0;
   std::atomic<int> matched_{0};
+  MatchedEndpoints readers_;
 };
 
 /// A participant with one publisher and one subscriber; owns every entity it creates

@@ -35,6 +35,8 @@ struct PlantNodeConfig {
   std::chrono::milliseconds poll{50};
   /// Longest wait for a DDS sample during discovery, ms.
   std::chrono::milliseconds discovery_poll{200};
+  /// Discovery without progress this long: the log names what is not matched (again every period).
+  std::chrono::milliseconds discovery_report{5000};
   /// Time the last Tick is given to reach every reader before the participant goes away, ms.
   std::chrono::milliseconds linger{200};
 

@@ -4,10 +4,12 @@
 #include "comm/lockstep.hpp"
 #include "comm/tick_filter.hpp"
 #include "config/scenario.hpp"
+#include "plant/discovery_wait.hpp"
 
 #include <algorithm>
 #include <fstream>
 #include <thread>
+#include <tuple>
 
 namespace maptr::plant {
 
@@ -92,8 +94,24 @@ bool PlantLoop::discover() {
   bool announced = false, started = false;
   // The tick goes to the agents, 2 groups, central, the launcher and the recorder (lockstep.hpp).
   const int tick_readers = n_agents + 4 + comm::recorder_readers(sc_.record, true);
+  // Without progress for a while, the log says what is still missing (the launcher starts a
+  // process again after a longer stall; this line tells which endpoints were never matched).
+  auto counts = std::make_tuple(-1, -1, -1, -1);
+  auto last_change = t_launch, last_report = t_launch;
   while (!stop_.load() && !started) {
     wait(c_.discovery_poll);
+    const auto now_counts = std::make_tuple(replies_.matched(), groups_.matched(), centrals_.matched(),
+                                            tick_match_.matched());
+    if (now_counts != counts) {
+      counts = now_counts;
+      last_change = Clock::now();
+    }
+    if (!announced && Clock::now() - last_change >= c_.discovery_report &&
+        Clock::now() - last_report >= c_.discovery_report) {
+      last_report = Clock::now();
+      log_.warn("discovery: no progress for {:.0f} s; matched {}",
+                std::chrono::duration<double>(last_report - last_change).count(), discovery_view_report(tick_readers));
+    }
     if (!announced && replies_.matched() >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
         tick_match_.matched() >= tick_readers) {
       comm::announce_ready(w_ready_, "plant", msg::NODE_PLANT);
@@ -237,6 +255,23 @@ void PlantLoop::log_membership() {
 
 // Launcher events: a death ends the wait for that process; a restarted process that is
 // matched and ready is waited for from the next tick on (its old writer no longer counts).
+std::string PlantLoop::discovery_view_report(int tick_readers) const {
+  const uint32_t fleet = p_.options().fleet_id;
+  const auto ids = [fleet](const std::vector<Handle>& handles) {
+    std::vector<int> out;
+    for (const auto& h : handles)
+      if (const auto id = comm::fleet_participant(fleet, h)) out.push_back(*id);
+    return out;
+  };
+  DiscoveryView v;
+  v.reply_writers = ids(replies_.matched_writers());
+  v.group_writers = ids(groups_.matched_writers());
+  v.central_writers = ids(centrals_.matched_writers());
+  v.tick_readers = ids(tick_match_.matched_readers());
+  v.tick_readers_expected = tick_readers;
+  return discovery_wait_report(sc_.robot.agents, v);
+}
+
 bool PlantLoop::sent_by(const Handle& writer, int base_id) const {
   const uint32_t fleet = p_.options().fleet_id;
   return fleet == 0 || comm::written_by_id(fleet, sc_.robot.agents, writer, base_id);

@@ -93,6 +93,8 @@ class PlantLoop {
   /// True when `writer` belongs to the process whose first participant id is `base_id`
   /// (comm/fleet_ids.hpp) in this fleet; always, without a fleet id.
   bool sent_by(const Handle& writer, int base_id) const;
+  /// What the plant has matched so far, naming the members it has not (plant/discovery_wait.hpp).
+  std::string discovery_view_report(int tick_readers) const;
   /// Samples dropped by each process: the plant's own and what each follower last reported.
   std::map<std::string, uint64_t> rejects_by_process() const;
   /// Samples the plant itself dropped (checks failed, or a payload that did not deserialize).

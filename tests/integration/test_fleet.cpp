@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include "model/kinematics.hpp"
 #include "records/trace.hpp"
@@ -335,4 +336,9 @@ TEST(Fleet, ADiscoveryTimeoutIsRetriedOnceAndTheSummarySaysSo) {
   };
   EXPECT_EQ(launches(out + "/first-attempt/logs/launcher.log"), 1);
   EXPECT_EQ(launches(out + "/logs/launcher.log"), 2) << "the retry's lines go to RUN/logs/launcher.log";
+  // The plant's log names what it never matched: the agent that was never started.
+  std::ifstream plant_log(out + "/first-attempt/logs/plant.log");
+  const std::string plant((std::istreambuf_iterator<char>(plant_log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(plant.find("discovery: no progress for"), std::string::npos) << plant;
+  EXPECT_NE(plant.find("agent replies 3/4 (not matched: L0)"), std::string::npos) << plant;
 }
