@@ -6,6 +6,7 @@
 #include "comm/udp_ports.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/log/Log.hpp>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
@@ -13,6 +14,7 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/utils/md5.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -118,7 +120,26 @@ std::vector<std::string> split_servers(const std::string& list) {
   return out;
 }
 
+namespace {
+
+/// Fast DDS's log level from MAPTR_DDS_LOG (DdsOptions::dds_log); an unknown level is said on stderr.
+void set_dds_log_level(const std::string& level) {
+  using eprosima::fastdds::dds::Log;
+  if (level.empty()) return;
+  if (level == "error")
+    Log::SetVerbosity(Log::Error);
+  else if (level == "warning")
+    Log::SetVerbosity(Log::Warning);
+  else if (level == "info")
+    Log::SetVerbosity(Log::Info);
+  else
+    std::fprintf(stderr, "MAPTR_DDS_LOG=%s: expected error, warning or info; Fast DDS's default kept\n", level.c_str());
+}
+
+}  // namespace
+
 Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
+  set_dds_log_level(o.dds_log);
   dds::DomainParticipantQos q = dds::PARTICIPANT_QOS_DEFAULT;
   q.name(name);
   auto& disc = q.wire_protocol().builtin.discovery_config;
@@ -319,6 +340,7 @@ DdsOptions options_from_env() {
   if (const char* m = std::getenv("MAPTR_SHM_SEGMENT_BYTES")) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
   if (const char* f = std::getenv("MAPTR_FLEET_ID")) o.fleet_id = static_cast<uint32_t>(std::strtoul(f, nullptr, 10));
   if (const char* s = std::getenv("MAPTR_SECURITY_DIR")) o.security_dir = s;
+  if (const char* l = std::getenv("MAPTR_DDS_LOG")) o.dds_log = l;
   return o;
 }
 

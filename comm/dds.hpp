@@ -43,6 +43,9 @@ struct DdsOptions {
   double lease_s = 2.0;                 ///< participant and liveliness lease, s
   bool is_server = false;               ///< this participant is the discovery server
   uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
+  /// MAPTR_DDS_LOG: Fast DDS's own log on the process's stderr from this level on ("error",
+  /// "warning" or "info"; empty: Fast DDS's default, errors only).
+  std::string dds_log;
   int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
   bool shm = true;                      ///< shared memory for data (else UDP only)
   bool shm_data_only = true;            ///< with shm: user data on shared memory only, UDP for discovery

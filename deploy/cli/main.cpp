@@ -1,6 +1,7 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
 // dispatches (`maptr run|level2|experiment|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|top|replay|plot`).
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
@@ -13,6 +14,7 @@
 #include "deploy/cli/soak_command.hpp"
 #include "deploy/cli/study_commands.hpp"
 #include "deploy/cli/top_command.hpp"
+#include "deploy/fleet/environment.hpp"
 
 using namespace maptr::deploy::cli;
 
@@ -51,6 +53,11 @@ int main(int argc, char** argv) {
     // --help prints and exits 0; any usage error (unknown option, a value outside its set)
     // exits 2, like a bad scenario.
     return app.exit(e) == 0 ? 0 : 2;
+  }
+  // The environment variables that choose how fleets run are input too: checked before anything starts.
+  if (const auto bad = maptr::deploy::fleet::environment_error([](const char* n) { return std::getenv(n); })) {
+    std::cerr << "maptr: " << *bad << "\n";
+    return 2;
   }
   // Every subcommand turns bad input into exit 2 with the option or field named; anything that
   // still escapes (an unexpected error) is reported here instead of aborting the program.

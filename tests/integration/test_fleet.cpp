@@ -7,8 +7,10 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <utility>
 
 #include "model/kinematics.hpp"
 #include "records/trace.hpp"
@@ -287,6 +289,20 @@ TEST(Fleet, BadCommandLineValuesAreRefusedLikeScenarioFields) {
     EXPECT_NE(r.output.find(c.field), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(c.value), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(out)) << "a refused option must not start a run";
+  }
+}
+
+TEST(Fleet, ABadFleetEnvironmentVariableIsRefusedBeforeAnythingStarts) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  for (const auto& [name, value] : {std::pair<const char*, const char*>{"MAPTR_DDS_LOG", "loud"},
+                                    std::pair<const char*, const char*>{"MAPTR_AGENT_START", "vfork"}}) {
+    setenv(name, value, 1);
+    auto r = run_cli(run_args(out, {"--agents", "4", "--duration", "1"}), out, 30);
+    unsetenv(name);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(std::string(name) + "=" + value + ": expected"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "a refused run must not create its folder";
   }
 }
 
