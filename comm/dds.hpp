@@ -286,7 +286,8 @@ class MatchCounter : public eprosima::fastdds::dds::DataWriterListener {
 /// A participant with one publisher and one subscriber; owns every entity it creates
 /// (delete_contained_entities() on destruction). With a fleet id and an explicit participant id,
 /// its GUID prefix is the fleet's (comm/fleet_ids.hpp). With a security folder, `name` is also
-/// its identity (NAME.cert.pem, NAME.permissions.p7s there).
+/// its identity (NAME.cert.pem, NAME.permissions.p7s there). The listeners given to reader()
+/// and writer() must outlive it (declare them before it): deleting its entities still calls them.
 class Participant {
  public:
   Participant(const std::string& name, const DdsOptions& o);

@@ -117,8 +117,8 @@ TEST(LatchedWriter, AUdpOnlyReaderThatJoinsLateGetsTheHistoryOfASharedMemoryWrit
     // Joins after the sample was written: the reader gets it from the writer's history only.
     DdsOptions ro = client_options(domain, server);
     ro.shm = false;  // as maptr top: UDP only
+    Events events;  // outlives the participant, whose end still calls it
     Participant reader("latched-test-reader", ro);
-    Events events;
     reader.reader(reader.topic<msg::MembershipEventPubSubType>(topic::kMembership), Profile::kLatched, &events);
     received = events.wait_for_one(kWait_s);
     names = events.names();

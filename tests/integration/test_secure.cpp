@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <sstream>
 #include <thread>
@@ -84,10 +85,11 @@ struct Outsider {
     for (auto& [t, h] : ticks.drain()) n += t.tick() != kForgedTick;
     return n;
   }
-  comm::Participant p;
+  // The listeners first: they outlive the participant, whose end still calls them.
   comm::Signal signal;
   comm::Inbox<msg::PlantTick> ticks{signal};
   comm::MatchCounter matched;
+  comm::Participant p;
   eprosima::fastdds::dds::DataReader* reader = nullptr;
   eprosima::fastdds::dds::DataWriter* writer = nullptr;
 };
@@ -145,9 +147,14 @@ TEST(Secure, ACertifiedParticipantCannotWriteTicksAndItsRepliesUnderAnotherNameA
   ASSERT_EQ(plain["status"], "ok") << plain.dump(2);
   TempDir tmp;
   const std::string out = tmp.path() + "/secure";
-  const pid_t launcher = start_secure(out, tmp.path() + "/out.log");
+  const std::string log = tmp.path() + "/out.log";
+  std::vector<std::string> args = kScenario;
+  args.push_back("--secure");
+  const pid_t launcher = start_cli(run_args(out, args), log);
+  // The run's CA exists once fleet.json does (the launcher writes both before its first wave).
+  ASSERT_TRUE(wait_for([&] { return !read_json(out + "/fleet.json").is_null(); }, kStartTimeout_s))
+      << read_text(log);
   const auto fleet_json = read_json(out + "/fleet.json");
-  ASSERT_FALSE(fleet_json.is_null());
   // An identity of the run's CA allowed to publish agent replies only.
   const fleet::SecureDomain run_ca(out + "/security", fleet_json["domain"]);
   run_ca.add_identity({"intruder", {comm::topic::kAgentReply}});
@@ -155,18 +162,30 @@ TEST(Secure, ACertifiedParticipantCannotWriteTicksAndItsRepliesUnderAnotherNameA
   dds.domain = fleet_json["domain"];
   dds.lease_s = fleet_json["lease_s"];
   dds.security_dir = run_ca.files().dir;
+  comm::MatchCounter m;  // outlives the participant, whose end still calls it
   {
+    // The participant joins while the fleet discovers itself, so that its authentication with
+    // every process (the slow part) is done before the run starts. It has no endpoint until the
+    // lock-step runs: no process of the fleet counts it while it waits for its members.
     comm::Participant p("intruder", dds);
+    ASSERT_TRUE(wait_for(
+        [&] { return read_text(out + "/logs/launcher.log").find("matched after") != std::string::npos; },
+        kStartTimeout_s))
+        << read_text(log);
     EXPECT_THROW(p.writer(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream),
                  std::runtime_error)
         << "permissions without the tick topic let a participant write ticks";
-    comm::MatchCounter m;
+    const auto created = std::chrono::steady_clock::now();
     auto* w =
         p.writer(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &m);
     // Two readers take replies: the plant's and the recorder's. The first match may be the
     // recorder's alone (each pair's key exchange ends on its own), so wait for both.
     ASSERT_TRUE(wait_for([&] { return m.matched() >= 2; }, 60))
-        << "the plant's and the recorder's reply readers did not both match";
+        << "the plant's and the recorder's reply readers did not both match ("
+        << (read_json(out + "/summary.json").is_null() ? "the run goes on" : "the run had ended") << ")";
+    std::cout << "the intruder's writer matched both reply readers "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - created).count()
+              << " s after its creation" << std::endl;
     const auto t0 = std::chrono::steady_clock::now();
     for (uint64_t k = 0;
          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < kAttack_s; ++k) {
@@ -180,7 +199,7 @@ TEST(Secure, ACertifiedParticipantCannotWriteTicksAndItsRepliesUnderAnotherNameA
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
   }
-  ASSERT_EQ(wait_child(launcher, kRunTimeout_s), 0) << read_text(tmp.path() + "/out.log");
+  ASSERT_EQ(wait_child(launcher, kRunTimeout_s), 0) << read_text(log);
   const auto s = read_json(out + "/summary.json");
   EXPECT_EQ(s["status"], "ok");
   EXPECT_EQ(s["trace_sha256"], plain["trace_sha256"]) << "the certified intruder changed the run";
