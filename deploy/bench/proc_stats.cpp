@@ -83,6 +83,31 @@ std::optional<ProcCounters> read_proc_counters(long pid) {
   return c;
 }
 
+std::optional<MachineCpu> parse_proc_stat_cpu(const std::string& stat) {
+  std::istringstream in(stat.substr(0, stat.find('\n')));
+  std::string name;
+  if (!(in >> name) || name != "cpu") return std::nullopt;
+  constexpr int kFields = 8;  // user nice system idle iowait irq softirq steal (guest is in user)
+  MachineCpu m;
+  for (int i = 0; i < kFields; ++i) {
+    long long v = 0;
+    if (!(in >> v) || v < 0) return std::nullopt;
+    m.total += v;
+    if (i == kFields - 1) m.steal = v;
+  }
+  return m;
+}
+
+std::optional<MachineCpu> read_machine_cpu() {
+  const auto stat = read_text("/proc/stat");
+  return stat ? parse_proc_stat_cpu(*stat) : std::nullopt;
+}
+
+double steal_percent(const MachineCpu& before, const MachineCpu& after) {
+  const long long total = after.total - before.total;
+  return total > 0 ? 100.0 * static_cast<double>(after.steal - before.steal) / static_cast<double>(total) : 0.0;
+}
+
 std::optional<long long> read_main_thread_ctx_switches(long pid) {
   const auto status = read_text("/proc/" + std::to_string(pid) + "/status");
   if (!status) return std::nullopt;

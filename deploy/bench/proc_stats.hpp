@@ -25,6 +25,24 @@ struct ProcCounters {
 /// A live process's counters; nullopt when it is gone, a zombie, or /proc cannot be read.
 std::optional<ProcCounters> read_proc_counters(long pid);
 
+/// The machine's CPU time so far, from the "cpu" line of /proc/stat (clock ticks): all of it, and
+/// the part a hypervisor ran something else while this machine had work for a CPU ("steal").
+/// On a shared VM steal is what makes two sittings differ (BENCHMARKS.md).
+struct MachineCpu {
+  long long total = 0;  ///< user + nice + system + idle + iowait + irq + softirq + steal
+  long long steal = 0;
+};
+
+/// The first line of a /proc/stat text; nullopt when it is not the "cpu" line with at least the
+/// eight fields up to steal.
+std::optional<MachineCpu> parse_proc_stat_cpu(const std::string& stat);
+
+/// This machine's now; nullopt when /proc/stat cannot be read.
+std::optional<MachineCpu> read_machine_cpu();
+
+/// Steal between two reads as a share of all CPU time between them, %; 0 when no time passed.
+double steal_percent(const MachineCpu& before, const MachineCpu& after);
+
 /// The same for one task's status only (/proc/PID/status: its main thread), as the floor
 /// probe's single-threaded workers need.
 std::optional<long long> read_main_thread_ctx_switches(long pid);

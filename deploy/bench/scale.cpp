@@ -12,6 +12,7 @@
 #include "deploy/bench/cost_watch.hpp"
 #include "deploy/bench/floor.hpp"
 #include "deploy/bench/memory.hpp"
+#include "deploy/bench/proc_stats.hpp"
 #include "deploy/experiments/isolated_launch.hpp"
 #include "deploy/report/gnuplot.hpp"
 #include "deploy/report/table.hpp"
@@ -64,6 +65,8 @@ std::vector<report::Column> columns() {
   cols.push_back({"realtime", "paced to the wall clock", -1});
   cols.push_back({"tick_filter", "tick filter", -1});
   cols.push_back({"plant_scheduling", "plant lock-step thread", -1});
+  cols.push_back({"steal_pct_fleet", "CPU steal % fleet", 1});
+  cols.push_back({"steal_pct_floor", "CPU steal % floor", 1});
   return cols;
 }
 
@@ -146,18 +149,26 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
   FleetMemory mem;
   FleetCost cost;
   const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
+  // The hypervisor's share of this machine's CPU time during the fleet and during the floor: on
+  // a shared VM, what makes one sitting's ratios differ from another's.
+  const auto machine0 = read_machine_cpu();
   const records::Summary sum(launch_isolated({s, run_dir, o.bin_dir, o.domain, run_dir + "/maptr.out"},
                                              [&](const std::atomic<bool>& done) {
                                                mem = sample_memory(run_dir, done);
                                                cost = watch_fleet_cost(run_dir, cost_window(s.ticks()), done);
                                              }));
   const double cpu = cpu_seconds(RUSAGE_CHILDREN) - cpu0;
+  const auto machine1 = read_machine_cpu();
   const double sim = sum.number_or(records::summary_key::kSimTime, 0),
                wall = sum.number_or(records::summary_key::kWallTime, 0);
   const std::string status = sum.status();
   const records::TickTiming tick = sum.tick_timing("tick");
   // The floor of the same shape, measured right after the fleet, on the same machine state.
   const FloorResult floor = measure_floor(n + kAnswersBesideAgents);
+  const auto machine2 = read_machine_cpu();
+  const auto steal = [](const std::optional<MachineCpu>& a, const std::optional<MachineCpu>& b) {
+    return a && b ? steal_percent(*a, *b) : 0.0;
+  };
   const long pss_max =
       mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
   json row = {
@@ -190,7 +201,9 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"floor_median_us", floor.median_us},
       {"x_floor", floor.median_us > 0 ? tick.median / floor.median_us : 0.0},
       {"floor_cs_per_round", floor.ctx_switches_per_round},
-      {"floor_cpu_us_per_round", floor.cpu_us_per_round}};
+      {"floor_cpu_us_per_round", floor.cpu_us_per_round},
+      {"steal_pct_fleet", steal(machine0, machine1)},
+      {"steal_pct_floor", steal(machine1, machine2)}};
   row.update(fleet_cost_json(cost));
   return row;
 }
@@ -229,7 +242,8 @@ int bench_scale(const BenchOptions& o) {
         std::cerr << " " << status << ", discovery " << row["discovery_s"].get<double>() << " s, RTF "
                   << row["real_time_factor"].get<double>() << ", tick " << row["tick_median_us"].get<double>()
                   << " µs = " << row["x_floor"].get<double>() << " x floor ("
-                  << row["floor_median_us"].get<double>() << " µs)\n";
+                  << row["floor_median_us"].get<double>() << " µs), CPU steal "
+                  << row["steal_pct_fleet"].get<double>() << " %\n";
         if (status != "ok") worst = 1;
       }
   report::write_file(o.out + "/scale.md", t.md());

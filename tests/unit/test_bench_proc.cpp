@@ -36,6 +36,32 @@ TEST(BenchProc, TruncatedFilesAreNotRead) {
   EXPECT_FALSE(parse_status_ctx_switches("Name:\tmaptr\nvoluntary_ctxt_switches:\t480\n"));
 }
 
+TEST(BenchProc, MachineCpuIsTheFirstEightFieldsOfTheCpuLineAndStealTheEighth) {
+  // A 2-CPU VM: the "cpu" line, then the per-CPU lines and the rest of the file.
+  const std::string stat =
+      "cpu  185679 7 41201 271375 1706 0 1905 41470 12 0\n"
+      "cpu0 92000 3 20000 135000 800 0 900 20700 6 0\nintr 1 2 3\n";
+  const auto m = parse_proc_stat_cpu(stat);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->total, 185679 + 7 + 41201 + 271375 + 1706 + 0 + 1905 + 41470);
+  EXPECT_EQ(m->steal, 41470);
+  // A kernel without the steal field, another line first, a negative value: not read.
+  EXPECT_FALSE(parse_proc_stat_cpu("cpu  1 2 3 4 5 6 7\n"));
+  EXPECT_FALSE(parse_proc_stat_cpu("cpu0 1 2 3 4 5 6 7 8\n"));
+  EXPECT_FALSE(parse_proc_stat_cpu("cpu  1 2 3 -4 5 6 7 8\n"));
+  EXPECT_FALSE(parse_proc_stat_cpu(""));
+}
+
+TEST(BenchProc, StealPercentIsItsShareOfAllCpuTimeBetweenTwoReads) {
+  const MachineCpu a{1000, 100}, b{1400, 130};
+  EXPECT_DOUBLE_EQ(steal_percent(a, b), 7.5);  // 30 of 400 ticks
+  EXPECT_DOUBLE_EQ(steal_percent(a, a), 0.0);
+  const auto now = read_machine_cpu();
+  ASSERT_TRUE(now) << "this machine's /proc/stat";
+  EXPECT_GT(now->total, 0);
+  EXPECT_GE(now->steal, 0);
+}
+
 TEST(BenchProc, ALiveProcessIsReadAndAnEndedOneIsNot) {
   const auto self = read_proc_counters(getpid());
   ASSERT_TRUE(self);
