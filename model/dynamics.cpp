@@ -47,8 +47,8 @@ double rolling_resistance(const RobotParams& p, double v) {
   return p.mu_rolling * p.gross_mass_kg * p.gravity * kTwoOverPi * std::atan(p.k_s * v);
 }
 
-BodyForces body_forces(const RobotParams& p, double tau_l, double tau_r, double v, double w) {
-  const double r = p.wheel_radius_m, a = p.track_m;
+BodyForces body_resistances(const RobotParams& p, double v, double w) {
+  const double a = p.track_m;
   const int n = p.agents;
   const WheelSpeeds ws = to_wheels({v, w}, a);
   const double v_l = ws.v_L, v_r = ws.v_R;
@@ -67,11 +67,21 @@ BodyForces body_forces(const RobotParams& p, double tau_l, double tau_r, double 
   BodyForces b;
   b.f_rx = roll_l + roll_r;
   b.m_r = m_lat + 0.5 * a * (roll_r - roll_l);
-  const EffectiveInertia in = effective_inertia(p);
+  b.ground_loss_W = roll_l * v_l + roll_r * v_r + p_lat;
+  return b;  // dv_x, dw: 0 until with_torques()
+}
+
+BodyForces with_torques(const RobotParams& p, const EffectiveInertia& in, const BodyForces& resistances,
+                        double tau_l, double tau_r) {
+  const double r = p.wheel_radius_m, a = p.track_m;
+  BodyForces b = resistances;
   b.dv_x = ((tau_l + tau_r) / r - b.f_rx) / in.mass_kg;
   b.dw = (0.5 * a * (tau_r - tau_l) / r - b.m_r) / in.yaw_kgm2;
-  b.ground_loss_W = roll_l * v_l + roll_r * v_r + p_lat;
   return b;
+}
+
+BodyForces body_forces(const RobotParams& p, double tau_l, double tau_r, double v, double w) {
+  return with_torques(p, effective_inertia(p), body_resistances(p, v, w), tau_l, tau_r);
 }
 
 void derivative(const RobotParams& p, const Inputs& u, const double* x, double* dx) {

@@ -83,6 +83,14 @@ struct BodyForces {
 };
 BodyForces body_forces(const RobotParams& p, double tau_L_Nm, double tau_R_Nm, double v_x, double w);
 
+/// body_forces() in two parts, for callers that apply several torques at one state (the
+/// Level-2 rollout): the resistances at (v_x, w) (f_rx, m_r, ground_loss_W; dv_x and dw left
+/// 0), then the accelerations under given torques against them. Composed, they are
+/// body_forces() to the last bit.
+BodyForces body_resistances(const RobotParams& p, double v_x, double w);
+BodyForces with_torques(const RobotParams& p, const EffectiveInertia& in, const BodyForces& resistances,
+                        double tau_L_Nm, double tau_R_Nm);
+
 /// Derivative of the state; dx must have kStateSize entries. Pure function.
 void derivative(const RobotParams& p, const Inputs& u, const double* x, double* dx);
 

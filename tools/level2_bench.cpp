@@ -2,11 +2,11 @@
 // problems of the `weights` and `voltages` experiments (16 agents, one side, straight line).
 // One solver per problem family, reused and warm-started as in a group process; the speed
 // wanders around the reference (as in cruise) from one decision to the next.
-// Usage: maptr_level2_bench [DECISIONS_PER_FAMILY [WANDER [MAX_ITER]]]
-//        (defaults 200, 0.03 and the solver's Level2SolverConfig::max_iter)
+// Usage: maptr_level2_bench [DECISIONS_PER_FAMILY [WANDER [MAX_ITER [TOL]]]]
+//        (defaults 200, 0.03 and the solver's Level2SolverConfig::max_iter and tol)
 // WANDER: relative amplitude of the speed's wander around the reference (larger: more decisions
 // in the braking and clamping regions, where J has several local maxima). MAX_ITER: Ipopt's
-// iteration limit, to compare limits in one sitting.
+// iteration limit, to compare limits in one sitting. TOL: Ipopt's convergence tolerance, likewise.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -50,7 +50,7 @@ double sum_cpu(const std::vector<double>& v) {
   return s;
 }
 
-/// The command line: DECISIONS_PER_FAMILY, WANDER, MAX_ITER (each optional, in that order).
+/// The command line: DECISIONS_PER_FAMILY, WANDER, MAX_ITER, TOL (each optional, in that order).
 struct Args {
   int decisions = 200;
   double wander = kDefaultWander;
@@ -80,6 +80,18 @@ bool parse_args(int argc, char** argv, Args& a) {
   }
   if (argc > 3 && (a.config.max_iter = positive_int(argv[3])) == 0) {
     std::fprintf(stderr, "maptr_level2_bench: MAX_ITER = %s: must be a positive integer\n", argv[3]);
+    return false;
+  }
+  if (argc > 4) {
+    char* end = nullptr;
+    a.config.tol = std::strtod(argv[4], &end);
+    if (end == argv[4] || *end != '\0' || !(a.config.tol > 0.0 && a.config.tol < 1.0)) {
+      std::fprintf(stderr, "maptr_level2_bench: TOL = %s: must be a number in (0, 1)\n", argv[4]);
+      return false;
+    }
+  }
+  if (argc > 5) {
+    std::fprintf(stderr, "maptr_level2_bench: %s: too many arguments\n", argv[5]);
     return false;
   }
   return true;
@@ -142,9 +154,9 @@ int main(int argc, char** argv) {
                 percentile(cpu, 0.5));
   }
   std::printf(
-      "all %d decisions (max_iter %d): wall median %.3f ms, p95 %.3f ms; cpu median %.3f ms, max %.3f ms, "
+      "all %d decisions (max_iter %d, tol %g): wall median %.3f ms, p95 %.3f ms; cpu median %.3f ms, max %.3f ms, "
       "total %.0f ms; %.1f Ipopt iterations a solve; not converged %d (%.0f ms cpu); solver != oracle in %d\n",
-      total, config.max_iter, percentile(all, 0.5), percentile(all, 0.95), percentile(all_cpu, 0.5),
+      total, config.max_iter, config.tol, percentile(all, 0.5), percentile(all, 0.95), percentile(all_cpu, 0.5),
       percentile(all_cpu, 1.0), sum_cpu(all_cpu), static_cast<double>(iterations) / total, failed, failed_cpu,
       differ);
   return 0;

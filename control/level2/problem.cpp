@@ -11,7 +11,7 @@ namespace maptr::control {
 namespace {
 
 using model::armature_current;
-using model::body_forces;
+using model::body_resistances;
 using model::body_from_rates;
 using model::BodyForces;
 using model::BodyVelocity;
@@ -27,6 +27,7 @@ using model::to_wheel_rates;
 using model::torque_per_active;
 using model::voltage_for_torque;
 using model::WheelRates;
+using model::with_torques;
 
 /// Substeps per horizon step: ceil(step_s / substep_s), a ratio this close above an integer
 /// counting as that integer.
@@ -47,10 +48,10 @@ double soft_clamp(double x, double lo, double hi, double eps) {
   return hi - eps * softplus((hi - above_lo) / eps);
 }
 
-/// One classical RK4 step of length dt on (v, w), accel(v, w) giving (dv/dt, dw/dt).
+/// One classical RK4 step of length dt on (v, w), accel(v, w) giving (dv/dt, dw/dt) and k1 =
+/// accel(v, w) given (the caller has the state's forces already).
 template <typename Accel>
-void rk4_step(const Accel& accel, double dt, double& v, double& w) {
-  const BodyVelocity k1 = accel(v, w);
+void rk4_step(const Accel& accel, const BodyVelocity& k1, double dt, double& v, double& w) {
   const BodyVelocity k2 = accel(v + 0.5 * dt * k1.v_x, w + 0.5 * dt * k1.w);
   const BodyVelocity k3 = accel(v + 0.5 * dt * k2.v_x, w + 0.5 * dt * k2.w);
   const BodyVelocity k4 = accel(v + dt * k3.v_x, w + dt * k3.w);
@@ -58,11 +59,11 @@ void rk4_step(const Accel& accel, double dt, double& v, double& w) {
   w += dt / 6.0 * (k1.w + 2.0 * k2.w + 2.0 * k3.w + k4.w);
 }
 
-/// Net side torques (N m) that make the body accelerate by (a_v, a_w) at state (v, w).
-void needed_side_torques(const RobotParams& rb, const EffectiveInertia& in, double v, double w, double a_v,
+/// Net side torques (N m) that make the body accelerate by (a_v, a_w) against the resistances
+/// f (body_resistances() at the state).
+void needed_side_torques(const RobotParams& rb, const EffectiveInertia& in, const BodyForces& f, double a_v,
                          double a_w, double& tau_l, double& tau_r) {
   const double r = rb.wheel_radius_m, a = rb.track_m;
-  const BodyForces f = body_forces(rb, 0.0, 0.0, v, w);  // resistances only
   const double sum = r * (in.mass_kg * a_v + f.f_rx);
   const double diff = (2.0 * r / a) * (in.yaw_kgm2 * a_w + f.m_r);
   tau_l = 0.5 * (sum - diff);
@@ -125,22 +126,26 @@ double horizon_efficiency(const Level2Problem& p, double n) {
     for (int s = 0; s < substeps; ++s) {
       // Speed loop: voltages from the state at the substep start, held over the substep.
       const WheelRates ph = to_wheel_rates({v, w}, a, r);
+      const BodyForces resist = body_resistances(rb, v, w);
       double need_l = 0.0, need_r = 0.0;
-      needed_side_torques(rb, in, v, w, (ref.v_x - v) / p.approach_time_s, (ref.w - w) / p.approach_time_s,
+      needed_side_torques(rb, in, resist, (ref.v_x - v) / p.approach_time_s, (ref.w - w) / p.approach_time_s,
                           need_l, need_r);
       const double volt_l = loop_voltage(p, need_l, n_l, ph.phidot_L);
       const double volt_r = loop_voltage(p, need_r, n_r, ph.phidot_R);
       eta_sum +=
           p.side == 0 ? efficiency(rb.motor, volt_l, ph.phidot_L) : efficiency(rb.motor, volt_r, ph.phidot_R);
 
-      // The currents follow the wheel speeds inside the substep; the voltages are held.
-      auto accel = [&](double vv, double ww) {
-        const WheelRates q = to_wheel_rates({vv, ww}, a, r);
-        const BodyForces b = body_forces(rb, side_torque_at(p, n_l, volt_l, q.phidot_L),
-                                         side_torque_at(p, n_r, volt_r, q.phidot_R), vv, ww);
+      // The currents follow the wheel speeds inside the substep; the voltages are held. At the
+      // substep start the resistances are the speed loop's (body_forces() to the last bit).
+      auto accel_from = [&](const BodyForces& res, const WheelRates& q) {
+        const BodyForces b = with_torques(rb, in, res, side_torque_at(p, n_l, volt_l, q.phidot_L),
+                                          side_torque_at(p, n_r, volt_r, q.phidot_R));
         return BodyVelocity{b.dv_x, b.dw};
       };
-      rk4_step(accel, dt, v, w);
+      auto accel = [&](double vv, double ww) {
+        return accel_from(body_resistances(rb, vv, ww), to_wheel_rates({vv, ww}, a, r));
+      };
+      rk4_step(accel, accel_from(resist, ph), dt, v, w);
     }
     total += eta_sum / substeps;
   }
@@ -157,7 +162,7 @@ double required_voltage(const Level2Problem& p, double n, double speed_scale) {
   const double ph_l = speed_scale * p.phidot_ref_L, ph_r = speed_scale * p.phidot_ref_R;
   const BodyVelocity b = body_from_rates({ph_l, ph_r}, a, r);
   double need_l = 0.0, need_r = 0.0;
-  needed_side_torques(rb, effective_inertia(rb), b.v_x, b.w, 0.0, 0.0, need_l, need_r);
+  needed_side_torques(rb, effective_inertia(rb), body_resistances(rb, b.v_x, b.w), 0.0, 0.0, need_l, need_r);
   const double need = p.side == 0 ? need_l : need_r;
   const double phidot = p.side == 0 ? ph_l : ph_r;
   const double tau_a = torque_per_active(rb.motor, need, n, rb.per_side(), phidot);

@@ -258,6 +258,34 @@ TEST(Dynamics, EffectiveInertiasAreTheOnesTheAccelerationsUse) {
   EXPECT_NEAR(mm::body_forces(p, -1.0, 1.0, 0.0, 0.0).dw, (a / r) / in.yaw_kgm2, 1e-10);
 }
 
+TEST(Dynamics, ResistancesThenTorquesAreBodyForcesToTheLastBit) {
+  // The Level-2 rollout computes the resistances once per state and applies several torques
+  // to them; the plant calls body_forces(). Both must be one model, bit for bit.
+  for (int agents : {4, 16, 64}) {
+    mm::RobotParams p;
+    p.agents = agents;
+    const mm::EffectiveInertia in = mm::effective_inertia(p);
+    for (double v : {-1.3, 0.0, 0.004, 2.5, 11.0}) {
+      for (double w : {-0.8, 0.0, 0.02, 1.7}) {
+        const mm::BodyForces res = mm::body_resistances(p, v, w);
+        EXPECT_EQ(res.dv_x, 0.0);
+        EXPECT_EQ(res.dw, 0.0);
+        for (double tl : {-3.0, 0.0, 0.7}) {
+          for (double tr : {-0.2, 0.0, 4.1}) {
+            const mm::BodyForces a = mm::body_forces(p, tl, tr, v, w);
+            const mm::BodyForces b = mm::with_torques(p, in, res, tl, tr);
+            EXPECT_EQ(a.dv_x, b.dv_x) << agents << " " << v << " " << w << " " << tl << " " << tr;
+            EXPECT_EQ(a.dw, b.dw);
+            EXPECT_EQ(a.f_rx, b.f_rx);
+            EXPECT_EQ(a.m_r, b.m_r);
+            EXPECT_EQ(a.ground_loss_W, b.ground_loss_W);
+          }
+        }
+      }
+    }
+  }
+}
+
 TEST(Dynamics, KineticEnergyClosedForm) {
   // KE = (m + N I_w/r^2) v^2 / 2 + (I_zz + N I_w a^2 / (4 r^2)) w^2 / 2; N = 16: m_eff = 13.6 kg,
   // I_eff = 0.15664 + 16 * 3.0625e-5 * 0.04 / (4 * 0.001225) = 0.16064 kg m^2.
