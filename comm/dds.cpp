@@ -14,11 +14,15 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/utils/md5.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -214,10 +218,41 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
   if (!pub_ || !sub_) throw std::runtime_error("cannot create DDS publisher/subscriber for '" + name + "'");
 }
 
+namespace {
+std::atomic<double> g_deletion_bound_s{0.0};
+std::atomic<bool> g_left_open{false};
+
+void delete_participant(dds::DomainParticipant* dp) {
+  dp->delete_contained_entities();
+  dds::DomainParticipantFactory::get_instance()->delete_participant(dp);
+}
+}  // namespace
+
+void bound_participant_deletion(double seconds) { g_deletion_bound_s = seconds; }
+
+bool participant_left_open() { return g_left_open.load(); }
+
 Participant::~Participant() {
   if (!dp_) return;
-  dp_->delete_contained_entities();
-  dds::DomainParticipantFactory::get_instance()->delete_participant(dp_);
+  const double bound = g_deletion_bound_s.load();
+  if (bound <= 0.0) {
+    delete_participant(dp_);
+    return;
+  }
+  // The deletion runs in a thread of its own so that a deadlock inside Fast DDS cannot hold
+  // this one: the promise is shared, so a thread left running never touches freed memory.
+  auto done = std::make_shared<std::promise<void>>();
+  std::future<void> finished = done->get_future();
+  std::thread t([dp = dp_, done] {
+    delete_participant(dp);
+    done->set_value();
+  });
+  if (finished.wait_for(std::chrono::duration<double>(bound)) == std::future_status::ready) {
+    t.join();
+    return;
+  }
+  t.detach();
+  g_left_open = true;
 }
 
 dds::Topic* Participant::make_topic(const std::string& name, dds::TypeSupport& ts) {

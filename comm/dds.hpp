@@ -343,6 +343,17 @@ class Participant {
   eprosima::fastdds::dds::Subscriber* sub_ = nullptr;
 };
 
+/// Bounds the deletion of every Participant of this process from now on: a deletion that has
+/// not returned after `seconds` is left to run on (its thread detached) and the destructor
+/// returns. Fast DDS 2.9 with security can deadlock two of its own threads when a remote
+/// participant leaves while it checks another one's lease (eProsima/Fast-DDS#6502); the
+/// deletion then waits forever. 0 (the default): unbounded.
+void bound_participant_deletion(double seconds);
+
+/// True once a deletion was left running (see bound_participant_deletion()). Such a process
+/// must end with _exit: the participant factory's static destructor would wait on it again.
+bool participant_left_open();
+
 /// The UDP locator of participant `participant_id`'s metatraffic unicast port on `o`'s domain and
 /// interface (RTPS port d1); none for an id Fast DDS picks itself (participant_id < 0).
 std::optional<eprosima::fastrtps::rtps::Locator_t> metatraffic_udp_locator(const DdsOptions& o);

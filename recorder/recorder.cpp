@@ -148,6 +148,7 @@ void Recorder::taken() {
 void Recorder::push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes) {
   {
     std::lock_guard<std::mutex> g(m_);
+    if (stopping_) return;  // a participant Fast DDS could not delete (comm::participant_left_open())
     const uint64_t publish_ns = static_cast<uint64_t>(source.seconds()) * 1000000000ull + source.nanosec();
     // The log time is taken under the lock: log times rise in file order.
     queue_.push_back({channel, now_ns(), publish_ns, std::move(bytes)});
@@ -204,7 +205,7 @@ std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> Recorder::matched_writer
 
 void Recorder::stop() {
   if (!participant_ && !writer_.joinable()) return;
-  participant_.reset();  // no callback runs after this
+  participant_.reset();  // no callback runs after this, unless Fast DDS left it open (then push() drops)
   {
     std::lock_guard<std::mutex> g(m_);
     stopping_ = true;

@@ -54,6 +54,10 @@ struct FleetConfig {
   double end_kill_s = 5.0;
   /// The discovery server gets this long after SIGTERM before SIGKILL, s.
   double discovery_term_s = 3.0;
+  /// The launcher's participants get this long to be deleted, s; a deletion still running then
+  /// (a deadlock inside Fast DDS 2.9 with security: comm::bound_participant_deletion()) is left,
+  /// and the launcher writes its results and ends with _exit.
+  double participant_delete_s = 30.0;
   /// A secure fleet's simple discovery runs over shared memory (the loopback interface carries
   /// no multicast): up to this many agents.
   int secure_max_agents = 64;

@@ -468,6 +468,10 @@ void Fleet::end() {
   stop_recorder();
   fifo_.reset();
   participant_.reset();
+  if (comm::participant_left_open())
+    log_.warn("Fast DDS did not delete the launcher's participants within {:.0f} s (a deadlock of Fast DDS 2.9 "
+              "with security, eProsima/Fast-DDS#6502); the results are written and the launcher ends without them",
+              cfg_.participant_delete_s);
   for (auto& ds : ds_) ds->stop(cfg_.discovery_term_s);  // the discovery servers go last
   if (on_hosts()) record_hosts();
   net_.reset();  // the namespaces, veths and bridge

@@ -1,5 +1,6 @@
 #include "deploy/fleet/launcher.hpp"
 
+#include "comm/dds.hpp"
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/config.hpp"
@@ -9,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 namespace maptr::deploy {
 
@@ -42,7 +44,8 @@ namespace {
 
 nlohmann::json launch_once(const LaunchOptions& o, spdlog::logger& log) {
   // Set up: the run directory, the fleet's discovery server, the launcher's participant.
-  fleet::Fleet f(o, log);
+  auto fleet = std::make_unique<fleet::Fleet>(o, log);
+  auto& f = *fleet;
   // Start the controllers and the first wave of agents; the next waves start as the previous
   // ones become ready, until every process has matched what it needs.
   f.start_processes();
@@ -51,7 +54,11 @@ nlohmann::json launch_once(const LaunchOptions& o, spdlog::logger& log) {
   f.run();
   // End every process, then the discovery server; remove the fleet's shared-memory ports.
   f.end();
-  return f.summary();
+  nlohmann::json s = f.summary();
+  // A participant whose deletion Fast DDS never finished may still call the fleet's listeners:
+  // the fleet stays, and the process ends with _exit (run_command.cpp, isolated_launch.cpp).
+  if (comm::participant_left_open()) (void)fleet.release();
+  return s;
 }
 
 /// The domain of a second attempt: the next one, or the one below when the next cannot hold
@@ -84,6 +91,7 @@ void keep_first_attempt(const std::string& run_dir) {
 }  // namespace
 
 nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
+  comm::bound_participant_deletion(fleet::FleetConfig{}.participant_delete_s);
   nlohmann::json s = launch_once(o, log);
   // A fleet whose processes did not all report ready in time is not a result: one more attempt
   // with a fresh discovery server on another domain (other ports) before the run is aborted.
