@@ -204,7 +204,8 @@ void Fleet::await_recorder() {
 }
 
 bool Fleet::rematch_unrecorded() {
-  if (dds_.fleet_id == 0) return false;  // writers cannot be told apart (a secure domain)
+  // written_by() names a writer by the fleet id in its GUID prefix, or on a secure domain by the
+  // certificate that prefix was derived from (comm/fleet_guid.hpp).
   const auto seen = recorder_->matched_writers(comm::topic::kAgentReply);
   std::vector<Child*> unseen;
   for (auto& c : kids_) {
