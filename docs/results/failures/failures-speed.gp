@@ -14,7 +14,7 @@ set y2tics
 set xtics 1
 set yrange [0:*]
 set y2range [0:12.0]
-set arrow from 5, graph 0 to 5, graph 1 nohead dt 2
-set label 'tolerance' at 5, graph 0.95 offset 0.5,0
+set arrow from 4, graph 0 to 4, graph 1 nohead dt 2
+set label 'tolerance' at 4, graph 0.95 offset 0.5,0
 plot 'failures.csv' using "killed_per_side":"max_speed_error_pct" with linespoints lw 2 pt 7 axes x1y1 title 'max speed error', \
      '' using "killed_per_side":"final_speed_mps" with linespoints lw 2 pt 5 axes x1y2 title 'final speed'
