@@ -64,31 +64,30 @@ int positive_int(const char* text) {
   return end != text && *end == '\0' && v >= 1 && v <= 1000000000 ? static_cast<int>(v) : 0;
 }
 
+/// The number `text` holds, whole; false when it holds something else.
+bool whole_number(const char* text, double& out) {
+  char* end = nullptr;
+  out = std::strtod(text, &end);
+  return end != text && *end == '\0';
+}
+
 /// Parses the command line; prints what is wrong and returns false on a bad argument.
 bool parse_args(int argc, char** argv, Args& a) {
   if (argc > 1 && (a.decisions = positive_int(argv[1])) == 0) {
     std::fprintf(stderr, "maptr_level2_bench: DECISIONS_PER_FAMILY = %s: must be a positive integer\n", argv[1]);
     return false;
   }
-  if (argc > 2) {
-    char* end = nullptr;
-    a.wander = std::strtod(argv[2], &end);
-    if (end == argv[2] || *end != '\0' || !(a.wander >= 0.0 && a.wander < 1.0)) {
-      std::fprintf(stderr, "maptr_level2_bench: WANDER = %s: must be a number in [0, 1)\n", argv[2]);
-      return false;
-    }
+  if (argc > 2 && !(whole_number(argv[2], a.wander) && a.wander >= 0.0 && a.wander < 1.0)) {
+    std::fprintf(stderr, "maptr_level2_bench: WANDER = %s: must be a number in [0, 1)\n", argv[2]);
+    return false;
   }
   if (argc > 3 && (a.config.max_iter = positive_int(argv[3])) == 0) {
     std::fprintf(stderr, "maptr_level2_bench: MAX_ITER = %s: must be a positive integer\n", argv[3]);
     return false;
   }
-  if (argc > 4) {
-    char* end = nullptr;
-    a.config.tol = std::strtod(argv[4], &end);
-    if (end == argv[4] || *end != '\0' || !(a.config.tol > 0.0 && a.config.tol < 1.0)) {
-      std::fprintf(stderr, "maptr_level2_bench: TOL = %s: must be a number in (0, 1)\n", argv[4]);
-      return false;
-    }
+  if (argc > 4 && !(whole_number(argv[4], a.config.tol) && a.config.tol > 0.0 && a.config.tol < 1.0)) {
+    std::fprintf(stderr, "maptr_level2_bench: TOL = %s: must be a number in (0, 1)\n", argv[4]);
+    return false;
   }
   if (argc > 5) {
     std::fprintf(stderr, "maptr_level2_bench: %s: too many arguments\n", argv[5]);
