@@ -29,6 +29,7 @@ msg::AgentState to_msg(control::AgentState s) {
 control::AgentConfig make_config(const config::Scenario& s) {
   control::AgentConfig c;
   c.motor = s.robot.motor;
+  c.driver = s.robot.driver;
   c.pid = s.control.pid;
   c.wheel_radius_m = s.robot.wheel_radius_m;
   c.dt_s = s.dt();

@@ -12,6 +12,7 @@ control::CentralConfig make_config(const config::Scenario& s) {
   c.dt_s = s.dt();
   c.track_m = s.robot.track_m;
   c.wheel_radius_m = s.robot.wheel_radius_m;
+  c.heading_gain_1_s = s.control.path_heading_gain_1_s;
   return c;
 }
 }  // namespace
@@ -23,8 +24,13 @@ int CentralNode::run() {
   comm::TickFollower follower(args_, msg::NODE_CENTRAL, log_);
   follower.answer_writer<msg::CentralCommandPubSubType>(comm::topic::kCentral);
   return follower.run([&](const msg::PlantTick& t) {
-    const control::CentralOutput o =
-        core_.step(t.t(), t.sides()[msg::SIDE_L].n_active(), t.sides()[msg::SIDE_R].n_active());
+    control::CentralInput in;
+    in.t_s = t.t();
+    in.pose = {t.x(), t.y(), t.theta()};
+    in.v_x = t.v_x();
+    in.n_active_L = t.sides()[msg::SIDE_L].n_active();
+    in.n_active_R = t.sides()[msg::SIDE_R].n_active();
+    const control::CentralOutput o = core_.step(in);
     msg::CentralCommand c;
     c.tick(t.tick());
     c.v_x_ref(o.v_x_ref);

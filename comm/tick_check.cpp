@@ -6,13 +6,17 @@
 namespace maptr::comm {
 
 namespace {
+/// V_active is the mean of tick k-1's voltages, clamped to that tick's battery voltage; the
+/// battery's voltage at t_k may be a little lower.
+constexpr double kVoltageMargin = 1.01;
+
 bool side_valid(const msg::SideTick& s, std::size_t per_side) {
   for (double v : {s.phidot(), s.battery_V(), s.discharge_mAh(), s.phidot_ref(), s.V_active(), s.phidot_prev(),
                    s.phidot_ref_prev()})
     if (!std::isfinite(v)) return false;
   return s.active().size() == per_side && s.live().size() == per_side && s.wake().size() == per_side &&
          s.battery_V() >= 0 &&
-         s.V_active() >= 0 && s.n_active() <= per_side && s.relay_count() <= per_side;
+         s.V_active() >= -kVoltageMargin * s.battery_V() && s.n_active() <= per_side && s.relay_count() <= per_side;
 }
 }  // namespace
 

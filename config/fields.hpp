@@ -122,6 +122,11 @@ struct SegmentInput {
   double radius_m = 0.0;
   bool has_radius = false;
   bool has_yaw_rate = false;
+  bool has_duration = false;
+  /// type waypoints: the route's points [m] in the frame of its start (x ahead, y left), and
+  /// the radius of the arc that rounds each corner [m].
+  std::vector<std::pair<double, double>> points;
+  double corner_radius_m = 1.0;
 };
 
 std::string name_problem(const std::string& n);

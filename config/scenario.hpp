@@ -44,6 +44,8 @@ struct ControlConfig {
   double group_hold_s = 1.0;       ///< agents hold the last assignment this long without their group, s
   double central_timeout_s = 1.0;  ///< agents ramp to a stop after this long without central, s
   double stop_decel_mps2 = 2.0;    ///< deceleration of that ramp, m/s^2
+  double path_heading_gain_1_s = 2.0;  ///< central's heading gain K (control/central_core.hpp), 1/s
+  double path_tolerance_m = 0.5;   ///< a run whose cross-track error exceeds this is degraded, m
 };
 
 struct FaultSpec {

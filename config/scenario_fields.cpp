@@ -27,6 +27,17 @@ std::string target_problem(const std::string& t) {
 
 using S = Scenario;
 
+/// robot.driver: a choice of text kept as DriverParams::bidirectional.
+Field<S> driver_field() {
+  Field<S> f = text<S>(
+      "robot.driver", [](auto& s) -> auto& { return s.name; }, {"unidirectional", "bidirectional"},
+      "motor driver: unidirectional (voltage in [0, V_B], no braking: the paper's) or bidirectional "
+      "(an H-bridge: [-V_B, V_B], it brakes; docs/MODEL.md \"Driver\")");
+  f.get = [](const S& s) -> Value { return std::string(s.robot.driver.name()); };
+  f.set = [](S& s, const Value& v) { s.robot.driver.bidirectional = std::get<std::string>(v) == "bidirectional"; };
+  return f;
+}
+
 /// Top-level fields: the run and the robot's size, mass and motor.
 Table<S> run_fields() {
   Table<S> v = {
@@ -73,6 +84,7 @@ Table<S> run_fields() {
           "motor", [](auto& s) -> auto& { return s.robot.motor.type; }, {"I", "II"},
           "motor type of the paper's Table 1"),
   };
+  v.push_back(driver_field());
   // The motor type selects the whole motor of the paper's Table 1.
   for (auto& f : v)
     if (f.info.path == "motor")
@@ -86,6 +98,12 @@ Table<S> robot_fields() {
       real<S>(
           "robot.track_m", [](auto& s) -> auto& { return s.robot.track_m; }, above(0, 100), "m",
           "a: distance between the left and right wheel columns"),
+      flag<S>(
+          "robot.regeneration", [](auto& s) -> auto& { return s.robot.driver.regeneration; },
+          "bidirectional driver only: braking power charges the battery (else the driver dissipates it)"),
+      real<S>(
+          "robot.charge_limit_A", [](auto& s) -> auto& { return s.robot.driver.charge_limit_A; }, above(0, 1e4),
+          "A", "most charging current one side's battery takes with regeneration (the rest is dissipated)"),
       real<S>(
           "robot.row_spacing_m", [](auto& s) -> auto& { return s.robot.row_spacing_m; }, above(0, 100), "m",
           "b: distance between wheel rows"),
@@ -179,6 +197,16 @@ Table<S> control_fields() {
           "control.stop_decel_mps2", [](auto& s) -> auto& { return s.control.stop_decel_mps2; },
           above(0, 1e3), "m/s^2", "deceleration of that ramp"),
       real<S>(
+          "control.path_heading_gain_1_s", [](auto& s) -> auto& { return s.control.path_heading_gain_1_s; },
+          above(0, 1e3), "1/s",
+          "central's path follower: heading gain K (the cross-track error settles critically damped at "
+          "K/2 rad/s)"),
+      real<S>(
+          "control.path_tolerance_m", [](auto& s) -> auto& { return s.control.path_tolerance_m; },
+          above(0, 1e6), "m",
+          "a run whose cross-track error exceeds this after its first second ends degraded "
+          "(path not followed)"),
+      real<S>(
           "trajectory.accel_mps2", [](auto& s) -> auto& { return s.trajectory.accel_mps2; }, closed(0, 1e3),
           "m/s^2", "ramp limit on the speed reference (0: steps)"),
   };
@@ -201,8 +229,9 @@ const Table<SegmentInput>& segment_table() {
   static const Table<G> t = [] {
     Table<G> v = {
         text<G>(
-            "type", [](auto& g) -> auto& { return g.seg.type; }, {"straight", "arc", "stop"},
-            "straight, arc (needs a yaw rate or a radius) or stop"),
+            "type", [](auto& g) -> auto& { return g.seg.type; }, {"straight", "arc", "stop", "waypoints"},
+            "straight, arc (needs a yaw rate or a radius), stop, or waypoints (a route through points, "
+            "read as straights and arcs)"),
         real<G>(
             "speed_mps", [](auto& g) -> auto& { return g.seg.speed_mps; }, closed(0, 1e3), "m/s",
             "body speed reference v_x (no reversing)"),
@@ -214,8 +243,14 @@ const Table<SegmentInput>& segment_table() {
             "m", "arc only, instead of yaw_rate_rad_s: w = speed_mps / radius_m (negative: right)"),
         real<G>(
             "duration_s", [](auto& g) -> auto& { return g.seg.duration_s; }, above(0, 1e6), "s",
-            "how long the segment lasts"),
+            "how long the segment lasts (waypoints: from the route's length and speed)"),
+        real<G>(
+            "corner_radius_m", [](auto& g) -> auto& { return g.corner_radius_m; }, above(0, 1e6), "m",
+            "waypoints only: radius of the arc that rounds each corner of the route"),
     };
+    v[4].set = [](G& g, const Value& x) { g.seg.duration_s = std::get<double>(x), g.has_duration = true; };
+    v[5].get = nullptr;
+    v[5].info.input_only = true;
     v[2].set = [](G& g, const Value& x) {
       g.seg.yaw_rate_rad_s = std::get<double>(x), g.has_yaw_rate = true;
     };

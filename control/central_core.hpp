@@ -1,10 +1,22 @@
 #pragma once
-// Central controller: the mission's body reference (v_x, w) at the next tick's time
-// t_{k+1} = t_k + dt, turned into wheel speed references by the skid-steer kinematics,
+// Central controller: follows the mission's path in closed loop and turns the body command
+// into wheel speed references by the skid-steer kinematics,
 //   phidot_L = (v_x - (a/2) w) / r,  phidot_R = (v_x + (a/2) w) / r     [rad/s],
-// and each group's active count relayed to the other group. Pure: explicit time, no DDS.
+// and relays each group's active count to the other group. Pure: explicit time, no DDS.
+//
+// Path following (control/path.hpp gives the path, the reference and the nearest point): the
+// speed is the mission's reference at t_{k+1}; the yaw rate is the path's curvature times that
+// speed plus a heading loop towards a Stanley-style heading (Thrun et al., "Stanley: the robot
+// that won the DARPA Grand Challenge", J. Field Robotics 23(9), 2006):
+//   theta_d = theta_path - atan(e / L),   L = max(4 |v_x| / K, L_min)
+//   w = v_ref kappa + clamp(K wrap(theta_d - theta), +-w_corr_max)
+// e the signed cross-track error (> 0: the robot is left of the path), K the heading gain.
+// Linearised about the path (e' = v e_theta, e_theta' = w - v kappa), the error obeys
+// e'' + K e' + (K v / L) e = 0: with L = 4 v / K it is critically damped at every speed, with
+// natural frequency K / 2. With no error the command is the mission's profile itself.
 #include <utility>
 
+#include "control/path.hpp"
 #include "control/trajectory.hpp"
 
 namespace maptr::control {
@@ -14,6 +26,18 @@ struct CentralConfig {
   double dt_s = 0.01;             ///< tick period, s
   double track_m = 0.2;           ///< a, m
   double wheel_radius_m = 0.035;  ///< r, m
+  double heading_gain_1_s = 2.0;  ///< K, 1/s
+  double min_lookahead_m = 0.5;   ///< L_min, m
+  double max_correction_rad_s = 1.0;  ///< w_corr_max, rad/s
+  double search_ahead_m = 2.0;    ///< the nearest point is sought up to the reference's length + this, m
+};
+
+/// The robot as central sees it in tick k.
+struct CentralInput {
+  double t_s = 0.0;       ///< t_k, s
+  Pose pose;              ///< at t_k
+  double v_x = 0.0;       ///< m/s, body speed at t_k
+  int n_active_L = 0, n_active_R = 0;  ///< the groups' active counts seen at tick k
 };
 
 struct CentralOutput {
@@ -21,16 +45,18 @@ struct CentralOutput {
   double phidot_ref_L = 0.0, phidot_ref_R = 0.0;  ///< rad/s
   int relay_for_L = 0, relay_for_R = 0;           ///< counts relayed to each group
   int segment = 0;                                ///< trajectory segment at t_{k+1}
+  double cross_track_m = 0.0;                     ///< e at t_k, m
 };
 
 class CentralCore {
  public:
-  explicit CentralCore(CentralConfig c) : c_(std::move(c)) {}
-  /// Command for tick k+1 given tick k's time [s] and the groups' active counts seen at tick k.
-  CentralOutput step(double t_k, int n_active_L, int n_active_R) const;
+  explicit CentralCore(CentralConfig c) : c_(std::move(c)), path_(c_.trajectory) {}
+  /// Command for tick k+1 given what tick k shows.
+  CentralOutput step(const CentralInput& in) const;
 
  private:
   CentralConfig c_;
+  Path path_;
 };
 
 }  // namespace maptr::control

@@ -13,6 +13,9 @@ struct Segment {
   double speed_mps = 10.0;        ///< v_x reference, m/s
   double yaw_rate_rad_s = 0.0;    ///< w reference, rad/s (arc: from radius_m if given)
   double duration_s = 60.0;       ///< s
+  /// Where the scenario gave it, for messages ("trajectory.segments[1]", or a waypoint's corner
+  /// "trajectory.segments[0].points[2]"); "" when made in code.
+  std::string origin;
 };
 
 struct Trajectory {

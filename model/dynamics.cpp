@@ -1,5 +1,6 @@
 #include "model/dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "model/kinematics.hpp"
@@ -10,18 +11,25 @@ namespace {
 constexpr double kTwoOverPi = 2.0 / M_PI;
 }
 
-SideLoad side_load(const MotorParams& m, const std::vector<double>& voltage,
+SideLoad side_load(const MotorParams& m, const DriverParams& d, const std::vector<double>& voltage,
                    const std::vector<uint8_t>& active, double phidot) {
   SideLoad s;
   const double sgn = smooth_sign(phidot, m.friction_sign_scale_rad_s);
   const double drag = m.viscous_Nms * phidot;
+  double brake_A = 0.0, brake_W = 0.0;  // braking motors' current and returned power (>= 0)
   for (std::size_t i = 0; i < active.size(); ++i) {
     if (active[i]) {
       const double v = voltage[i];
-      const double cur = armature_current(m, v, phidot);
+      const double cur = armature_current(m, d, v, phidot);
+      const double p = v * cur;
       s.torque_Nm += active_torque(m, cur, phidot);
-      s.current_A += cur;
-      s.power_W += v * cur;
+      if (p >= 0.0) {
+        s.current_A += d.bidirectional ? std::fabs(cur) : cur;
+        s.power_W += p;
+      } else {
+        brake_A += std::fabs(cur);
+        brake_W -= p;
+      }
       s.joule_W += cur * cur * m.resistance_ohm;
       s.motor_loss_W += (m.torque_constant_NmA * m.no_load_current_A * sgn + drag) * phidot;
       s.emf_loss_W += (m.back_emf_Vs - m.torque_constant_NmA) * cur * phidot;
@@ -29,6 +37,13 @@ SideLoad side_load(const MotorParams& m, const std::vector<double>& voltage,
       s.torque_Nm += inactive_torque(m, phidot);
       s.motor_loss_W += drag * phidot;
     }
+  }
+  if (brake_W > 0.0) {
+    const double returned = d.regeneration ? std::min(1.0, d.charge_limit_A / brake_A) : 0.0;
+    s.current_A -= returned * brake_A;
+    s.power_W -= returned * brake_W;
+    s.driver_W = (1.0 - returned) * brake_W;
+    s.joule_W += s.driver_W;
   }
   return s;
 }
@@ -89,8 +104,8 @@ void derivative(const RobotParams& p, const Inputs& u, const double* x, double* 
   const double v = x[kVx], w = x[kW], th = x[kTheta];
   const WheelSpeeds ws = to_wheels({v, w}, a);
   const double v_l = ws.v_L, v_r = ws.v_R;
-  const SideLoad left = side_load(p.motor, u.voltage_L, u.active_L, v_l / r);
-  const SideLoad right = side_load(p.motor, u.voltage_R, u.active_R, v_r / r);
+  const SideLoad left = side_load(p.motor, p.driver, u.voltage_L, u.active_L, v_l / r);
+  const SideLoad right = side_load(p.motor, p.driver, u.voltage_R, u.active_R, v_r / r);
   const BodyForces b = body_forces(p, left.torque_Nm, right.torque_Nm, v, w);
 
   dx[kX] = v * std::cos(th);

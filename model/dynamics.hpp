@@ -33,7 +33,7 @@ enum StateIndex : int {
   kPathL,      ///< m, integral of |v_L|
   kPathR,      ///< m, integral of |v_R|
   kDistance,   ///< m, integral of |v_x|
-  kLossJoule,  ///< J, I^2 R
+  kLossJoule,  ///< J, electrical: I^2 R in the windings + braking power the driver dissipates
   kLossMech,   ///< J, ground friction + motor friction + viscous drag
   kLossEmf,    ///< J, (K_e - K_T) I phidot (the datasheet's K_e != K_T)
   kStateSize
@@ -54,14 +54,19 @@ struct Inputs {
 /// Per-side quantities at one instant (for diagnostics and the agents' current/efficiency).
 struct SideLoad {
   double torque_Nm = 0.0;  ///< net shaft torque of the side's motors
-  double current_A = 0.0;  ///< total armature current drawn
-  double power_W = 0.0;    ///< electrical power drawn
-  double joule_W = 0.0;
+  double current_A = 0.0;  ///< battery current: drawn (> 0), or charging with regeneration (< 0)
+  double power_W = 0.0;    ///< battery power: drawn (> 0), or charging with regeneration (< 0)
+  double joule_W = 0.0;    ///< I^2 R of the windings + driver_W
+  double driver_W = 0.0;   ///< braking power the driver dissipates (not returned to the battery)
   double motor_loss_W = 0.0;  ///< motor friction + viscous dissipation
   double emf_loss_W = 0.0;
 };
 
-SideLoad side_load(const MotorParams& m, const std::vector<double>& voltage,
+/// One side's motors at wheel speed phidot. A motor that drives (V I_a >= 0) draws |I_a| from
+/// the battery at power V I_a. One that brakes (V I_a < 0) hands -V I_a to the driver, which
+/// dissipates it, or with regeneration charges the battery with it, up to charge_limit_A of
+/// the side's summed braking current (the share above the limit is dissipated).
+SideLoad side_load(const MotorParams& m, const DriverParams& d, const std::vector<double>& voltage,
                    const std::vector<uint8_t>& active, double phidot_rad_s);
 
 /// Effective inertias of the robot with its N wheels (wheel inertia I_w seen at the body):

@@ -7,8 +7,9 @@ namespace maptr::model {
 
 double smooth_sign(double x, double scale) { return std::tanh(x / scale); }
 
-double armature_current(const MotorParams& m, double v, double phidot) {
-  return std::max(0.0, (v - m.back_emf_Vs * phidot) / m.resistance_ohm);
+double armature_current(const MotorParams& m, const DriverParams& d, double v, double phidot) {
+  const double i = (v - m.back_emf_Vs * phidot) / m.resistance_ohm;
+  return d.bidirectional ? i : std::max(0.0, i);
 }
 
 double active_torque(const MotorParams& m, double i, double phidot) {
@@ -27,12 +28,13 @@ double torque_per_active(const MotorParams& m, double tau_side, double n, double
   return (tau_side - (n_side - n) * inactive_torque(m, phidot)) / n;
 }
 
-double efficiency(const MotorParams& m, double v, double phidot) {
-  const double i = armature_current(m, v, phidot);
+double efficiency(const MotorParams& m, const DriverParams& d, double v, double phidot) {
+  const double i = armature_current(m, d, v, phidot);
   const double p_in = v * i;
-  if (p_in <= 0.0) return 0.0;
   const double p_out = active_torque(m, i, phidot) * phidot;
-  return p_out > 0.0 ? p_out / p_in : 0.0;
+  if (p_in > 0.0) return p_out > 0.0 ? p_out / p_in : 0.0;
+  if (p_in < 0.0 && d.regeneration && p_out < 0.0) return p_in / p_out;
+  return 0.0;
 }
 
 double no_load_speed(const MotorParams& m, double v) {

@@ -1,6 +1,7 @@
 #pragma once
-// DC motor of one agent (paper eq. motor1, corrected; docs/MODEL.md "Motor").
-//   active:   I_a = max(0, (V - K_e phidot) / Omega)          [A]   (driver does not regenerate)
+// DC motor of one agent (paper eq. motor1, corrected; docs/MODEL.md "Motor" and "Driver").
+//   active:   I_a = (V - K_e phidot) / Omega                   [A]   (bidirectional driver)
+//             I_a = max(0, (V - K_e phidot) / Omega)           [A]   (unidirectional: no braking)
 //             tau = K_T (I_a - I_0 sgn_s(phidot)) - b phidot   [N m] (K_T I_0 is friction)
 //   inactive: open circuit, I_a = 0, tau = -b phidot           [N m]
 // sgn_s(x) = tanh(x / friction_sign_scale): a smooth sign that vanishes at standstill.
@@ -11,8 +12,9 @@ namespace maptr::model {
 /// Smooth sign used for Coulomb-like motor friction.
 double smooth_sign(double phidot_rad_s, double scale_rad_s);
 
-/// Armature current of an active motor, A (never negative: no regeneration).
-double armature_current(const MotorParams& m, double voltage_V, double phidot_rad_s);
+/// Armature current of an active motor, A: of either sign with a bidirectional driver, never
+/// negative with a unidirectional one.
+double armature_current(const MotorParams& m, const DriverParams& d, double voltage_V, double phidot_rad_s);
 
 /// Net shaft torque of an active motor at the given current and speed, N m.
 double active_torque(const MotorParams& m, double current_A, double phidot_rad_s);
@@ -31,8 +33,11 @@ double side_torque(const MotorParams& m, double n_active, double n_side, double 
 double torque_per_active(const MotorParams& m, double tau_side_Nm, double n_active, double n_side,
                          double phidot_rad_s);
 
-/// Efficiency tau phidot / (V I) of an active motor; 0 when it draws no power or brakes.
-double efficiency(const MotorParams& m, double voltage_V, double phidot_rad_s);
+/// Efficiency of an active motor: driving (V I > 0 and tau phidot > 0) tau phidot / (V I);
+/// braking with regeneration (V I < 0 and tau phidot < 0) the share of the absorbed mechanical
+/// power returned, (V I) / (tau phidot); otherwise (braking without regeneration, or power
+/// lost both ways) 0.
+double efficiency(const MotorParams& m, const DriverParams& d, double voltage_V, double phidot_rad_s);
 
 /// Steady no-load speed at voltage V (tau = 0, phidot > 0), rad/s. Closed form.
 double no_load_speed(const MotorParams& m, double voltage_V);

@@ -82,7 +82,14 @@ void RobotParams::validate() const {
   require(std::isfinite(wheel_inertia_kgm2), "wheel_inertia_kgm2", param_value(wheel_inertia_kgm2),
           "must be finite");
   motor.validate();
+  driver.validate();
   battery.validate();
+}
+
+void DriverParams::validate() const {
+  positive(charge_limit_A, "driver.charge_limit_A");
+  require(bidirectional || !regeneration, "driver.regeneration", "true",
+          "only a bidirectional driver can regenerate");
 }
 
 double RobotParams::yaw_inertia() const {

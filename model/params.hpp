@@ -45,6 +45,21 @@ struct BatteryParams {
   void validate() const;
 };
 
+/// The motor driver of every agent (docs/MODEL.md "Driver").
+///   unidirectional: a low-side switch, V in [0, V_B], I_a >= 0 (no braking: the paper's)
+///   bidirectional:  an H-bridge, V in [-V_B, V_B], I_a of either sign. Power that flows back
+///                   (V I_a < 0, braking) is dissipated in the driver, or with regeneration
+///                   returned to the battery up to charge_limit_A per side; the rest dissipated.
+struct DriverParams {
+  bool bidirectional = false;
+  bool regeneration = false;     ///< bidirectional only: braking power charges the battery
+  double charge_limit_A = 5.0;   ///< most charging current one side's battery takes, A
+  /// Lowest voltage the driver applies at battery voltage V_B: -V_B (H-bridge) or 0.
+  double floor_V(double battery_V) const { return bidirectional ? -battery_V : 0.0; }
+  const char* name() const { return bidirectional ? "bidirectional" : "unidirectional"; }
+  void validate() const;
+};
+
 /// The whole robot. N agents, N/2 per side, N/4 rows of 4 wheels spaced b apart, centred.
 struct RobotParams {
   int agents = 16;                 ///< N, multiple of 4, 4..512
@@ -63,6 +78,7 @@ struct RobotParams {
   /// Wheel inertia in kg m^2; <= 0 means derived: disc m_w r^2 / 2.
   double wheel_inertia_kgm2 = 0.0;
   MotorParams motor;
+  DriverParams driver;
   BatteryParams battery;
 
   void validate() const;

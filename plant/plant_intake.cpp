@@ -170,6 +170,9 @@ int PlantLoop::report(bool stopped) {
   e.speed_lost = core_.speed_lost();
   e.ref_speed_mps = model::speed_from_rates({cmd_.ref[0], cmd_.ref[1]}, sc_.robot.wheel_radius_m);
   e.speed_mps = core_.state()[model::kVx];
+  e.cross_track_max_m = core_.tracking().cross_track_max();
+  e.cross_track_max_t_s = core_.tracking().cross_track_max_t();
+  e.path_tolerance_m = sc_.control.path_tolerance_m;
   ReportInputs in;
   in.status = run_status(e, c_.degraded_band_pct);
   in.end_reason = end_reason_;

@@ -35,6 +35,7 @@ sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConf
   pc.stop_below_speed_pct = sc.stop_below_speed_pct;
   pc.speed_lost_hold_s = c.speed_lost_hold_s;
   pc.reached_band_pct = c.reached_band_pct;
+  pc.trajectory = sc.trajectory;
   return pc;
 }
 
@@ -320,6 +321,7 @@ SampleLimits PlantLoop::limits() const {
   l.battery_V[1] = core_.battery_V(1);
   l.voltage_tolerance_V = c_.voltage_tolerance_V;
   l.ref_bound_radps = c_.central_ref_bound_radps;
+  l.bidirectional = sc_.robot.driver.bidirectional;
   return l;
 }
 

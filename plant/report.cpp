@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace maptr::plant {
@@ -40,6 +41,13 @@ std::string run_status(const RunEnd& e, double degraded_band_pct) {
     for (const auto& n : e.silent_controllers) names += (names.empty() ? "" : ", ") + n;
     return "degraded: " + names + " dead or paused at the end; " +
            (e.silent_controllers.size() == 1 ? "its" : "their") + " agents ran on their own safe behaviour";
+  }
+  if (e.path_tolerance_m > 0.0 && e.cross_track_max_m > e.path_tolerance_m) {
+    char why[160];
+    std::snprintf(why, sizeof(why),
+                  "degraded: path not followed (max cross-track %.3f m at t = %.2f s > tolerance %.3g m)",
+                  e.cross_track_max_m, e.cross_track_max_t_s, e.path_tolerance_m);
+    return why;
   }
   if (e.reached_reference && !e.speed_lost) {  // a run too short to reach its speed is not degraded
     const double ref_v = e.ref_speed_mps;
@@ -89,6 +97,12 @@ nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
   j["battery_V"] = {{"L", core.battery_V(0)}, {"R", core.battery_V(1)}};
   j["pose"] = {{"x_m", x[model::kX]}, {"y_m", x[model::kY]}, {"theta_rad", x[model::kTheta]}};
   j["final_speed_mps"] = x[model::kVx];
+  const auto& tr = core.tracking();
+  j["path"] = {{"cross_track_max_m", tr.cross_track_max()},
+               {"cross_track_max_t_s", tr.cross_track_max_t()},
+               {"cross_track_rms_m", tr.cross_track_rms()},
+               {"heading_error_max_rad", tr.heading_error_max()},
+               {"final_position_error_m", tr.final_position_error()}};
   j["max_speed_error_pct"] = core.max_speed_error_pct();
   j["rms_speed_error_pct"] = core.rms_speed_error_pct();
   j["rejected_samples"] = in.rejected_samples;

@@ -41,11 +41,15 @@ struct RunEnd {
   /// left to their own safe behaviour (a ramp to a stop without central; hold, then coast,
   /// without their group).
   std::vector<std::string> silent_controllers;
+  double cross_track_max_m = 0.0;    ///< largest |cross-track error| after the first second, m
+  double cross_track_max_t_s = 0.0;  ///< when it was, s
+  double path_tolerance_m = 0.0;     ///< above this the path was not followed (0: not judged)
 };
 
 /// "ok", "aborted: stop signal", or "degraded: ..." when a side has no live agent, a controller
-/// was dead or paused at the end, or the run ended more than degraded_band_pct off its reference
-/// speed (a run that never reached its speed, or that ended for a lost speed, is not judged on it).
+/// was dead or paused at the end, the path was not followed (cross-track error above the
+/// tolerance), or the run ended more than degraded_band_pct off its reference speed (a run that
+/// never reached its speed, or that ended for a lost speed, is not judged on it).
 std::string run_status(const RunEnd& e, double degraded_band_pct);
 bool aborted(const std::string& status);
 

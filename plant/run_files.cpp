@@ -40,6 +40,10 @@ records::TraceRow to_record(const sim::TraceRow& r) {
   o.n_live_R = r.n_live[1];
   o.energy_J = x[model::kEnergyL] + x[model::kEnergyR];
   o.distance_m = x[model::kDistance];
+  o.ref_x_m = r.reference.x;
+  o.ref_y_m = r.reference.y;
+  o.ref_theta_rad = r.reference.theta;
+  o.cross_track_m = r.cross_track_m;
   return o;
 }
 

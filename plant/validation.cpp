@@ -5,9 +5,12 @@
 namespace maptr::plant {
 
 bool valid(const msg::AgentReply& r, const SampleLimits& l) {
-  return r.side() <= msg::SIDE_R && r.index() < l.per_side && std::isfinite(r.voltage_V()) &&
-         std::isfinite(r.current_A()) && std::isfinite(r.efficiency()) && r.voltage_V() >= 0.0 &&
-         r.voltage_V() <= l.battery_V[r.side()] + l.voltage_tolerance_V && r.state() <= msg::AGENT_STOPPING;
+  if (r.side() > msg::SIDE_R) return false;
+  const double limit = l.battery_V[r.side()] + l.voltage_tolerance_V;
+  const double floor = l.bidirectional ? -limit : 0.0;
+  return r.index() < l.per_side && std::isfinite(r.voltage_V()) && std::isfinite(r.current_A()) &&
+         std::isfinite(r.efficiency()) && r.voltage_V() >= floor && r.voltage_V() <= limit &&
+         r.state() <= msg::AGENT_STOPPING;
 }
 
 bool valid(const msg::GroupStatus& g, const SampleLimits& l) {

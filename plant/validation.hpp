@@ -15,6 +15,7 @@ struct SampleLimits {
   double battery_V[2] = {0.0, 0.0};   ///< each side's battery voltage at t_k, V
   double voltage_tolerance_V = 1e-9;  ///< allowed excess of an applied voltage over it, V
   double ref_bound_radps = 1e4;       ///< largest |wheel speed reference|, rad/s
+  bool bidirectional = false;         ///< the driver applies [-V_B, V_B] (else [0, V_B])
 };
 
 bool valid(const msg::AgentReply& r, const SampleLimits& l);

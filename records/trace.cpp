@@ -53,7 +53,11 @@ const std::vector<TraceColumn>& trace_columns() {
       {{"n_live_L", "", kCount}, &TraceRow::n_live_L},
       {{"n_live_R", "", kCount}, &TraceRow::n_live_R},
       {{"energy_J", "J", kNine}, &TraceRow::energy_J},
-      {{"distance_m", "m", kNine}, &TraceRow::distance_m}};
+      {{"distance_m", "m", kNine}, &TraceRow::distance_m},
+      {{"ref_x_m", "m", kNine}, &TraceRow::ref_x_m},
+      {{"ref_y_m", "m", kNine}, &TraceRow::ref_y_m},
+      {{"ref_theta_rad", "rad", kNine}, &TraceRow::ref_theta_rad},
+      {{"cross_track_m", "m", kNine}, &TraceRow::cross_track_m}};
   return cols;
 }
 

@@ -2,7 +2,8 @@
 // trace.csv: the plant's record of the run, one row every `trace_every` ticks. Row k holds the
 // state at t_k and what was applied over [t_k, t_k+1]: pose, body speeds, wheel speeds and their
 // references, the mean applied voltage, the summed current and the mean efficiency of the
-// active agents per side, battery voltage and discharge, agent counts, energy and distance.
+// active agents per side, battery voltage and discharge, agent counts, energy and distance, the
+// reference pose on the path and the cross-track error.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -19,6 +20,8 @@ struct TraceRow {
   double battery_V_L = 0, battery_V_R = 0, discharge_L_mAh = 0, discharge_R_mAh = 0;
   double n_active_L = 0, n_active_R = 0, n_live_L = 0, n_live_R = 0;
   double energy_J = 0, distance_m = 0;
+  double ref_x_m = 0, ref_y_m = 0, ref_theta_rad = 0;  ///< the path's reference pose at t_k
+  double cross_track_m = 0;  ///< signed distance to the path (> 0: left of it)
 
   /// Mean of the two sides' wheel-speed references times the wheel radius, m/s.
   double ref_speed_mps(double wheel_radius_m) const;

@@ -8,7 +8,8 @@
 
 namespace maptr::sim {
 
-PlantCore::PlantCore(const PlantCoreConfig& c) : c_(c), integ_(c.robot), u_(c.robot.per_side()) {
+PlantCore::PlantCore(const PlantCoreConfig& c)
+    : c_(c), integ_(c.robot), u_(c.robot.per_side()), path_(c.trajectory) {
   x_[model::kChargeL] = x_[model::kChargeR] = c.initial_discharge_mAh;
   for (int side = 0; side < 2; ++side) active_time_[side].assign(c.robot.per_side(), 0.0);
 }
@@ -59,6 +60,8 @@ TraceRow PlantCore::trace_row(const SideSum sum[2], double ref_L, double ref_R, 
   r.ref_radps[1] = ref_R;
   r.n_live[0] = live_L;
   r.n_live[1] = live_R;
+  r.reference = path_ref_.pose;
+  r.cross_track_m = path_at_.cross_track;
   for (int s = 0; s < 2; ++s) {
     r.phidot_radps[s] = phidot(s);
     r.voltage_mean_V[s] = mean(sum[s].v, sum[s].n);
@@ -108,6 +111,10 @@ TickRecord PlantCore::hold(const std::vector<AgentApplied>& left, const std::vec
   sum[0] = sum[1] = SideSum{};
   const std::vector<AgentApplied>* sides[2] = {&left, &right};
   hold_inputs(sides, sum);
+  const control::Pose pose{x_[model::kX], x_[model::kY], x_[model::kTheta]};
+  path_ref_ = path_.at_time(t());
+  path_at_ = path_.project(pose, path_ref_.s + c_.path_search_ahead_m);
+  tracking_.add(t(), path_at_, path_ref_, pose);
   TickRecord rec;
   // Row k: state at t_k and what was applied over [t_k, t_k+1].
   if (tick_ % c_.trace_every == 0) rec.row = trace_row(sum, ref_L, ref_R, live_L, live_R);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "control/path.hpp"
 #include "model/params.hpp"
 #include "sim/integrator.hpp"
 #include "sim/speed_band.hpp"
@@ -35,6 +36,10 @@ struct PlantCoreConfig {
   double speed_lost_hold_s = 5.0;
   /// Tracking error under which the reference counts as reached the first time, %.
   double reached_band_pct = kSpeedBandPct;
+  /// The mission, whose path the robot's pose is measured against (control/path.hpp).
+  control::Trajectory trajectory;
+  /// The robot is measured against the path up to the reference's length plus this, m.
+  double path_search_ahead_m = 2.0;
 };
 
 /// Trace row k: the state at t_k and what was applied over [t_k, t_k+1]. Per-side arrays are
@@ -51,6 +56,8 @@ struct TraceRow {
   double battery_V[2] = {0.0, 0.0};
   int n_active[2] = {0, 0};
   int n_live[2] = {0, 0};
+  control::Pose reference;     ///< the path's reference pose at t_k
+  double cross_track_m = 0.0;  ///< signed distance to the path at t_k (> 0: left of it), m
 };
 
 /// A side's set of driving agents changed at t_s (one flag per agent of the side).
@@ -105,6 +112,8 @@ class PlantCore {
   /// Charge drawn during the run (without the initial discharge), mAh.
   double drawn_mAh(int side) const;
   int last_active(int side) const { return side == 0 ? last_active_L_ : last_active_R_; }
+  /// How the robot has followed its path so far (the ticks held).
+  const control::TrackingStats& tracking() const { return tracking_; }
 
  private:
   struct SideSum {
@@ -133,6 +142,10 @@ class PlantCore {
   long long err_n_ = 0;
   int last_active_L_ = 0, last_active_R_ = 0;
   bool reached_ = false;
+  control::Path path_;
+  control::TrackingStats tracking_;
+  control::PathRef path_ref_;  ///< the reference at the tick held
+  control::Projection path_at_;  ///< the robot against its path at the tick held
 };
 
 }  // namespace maptr::sim

@@ -64,14 +64,14 @@ AgentOutput AgentCore::step(const AgentInput& in) {
     // it carrying less than the others for good, and the side would draw more than an even split
     // (Joule losses grow with the square of the current). It starts at the side's level instead.
     if (!was_driving_) {
-      if (in.side_active_V > 0.0 && has_prev_error_)
+      if (in.side_active_V != 0.0 && has_prev_error_)
         pid_.align(in.side_active_V, prev_error_);
       else
         pid_.preload(c_.motor.back_emf_Vs * in.phidot_rad_s);
     }
-    out.voltage_V = pid_.update(ref - in.phidot_rad_s, dt, in.battery_V);
-    out.current_A = model::armature_current(c_.motor, out.voltage_V, in.phidot_rad_s);
-    out.efficiency = model::efficiency(c_.motor, out.voltage_V, in.phidot_rad_s);
+    out.voltage_V = pid_.update(ref - in.phidot_rad_s, dt, c_.driver.floor_V(in.battery_V), in.battery_V);
+    out.current_A = model::armature_current(c_.motor, c_.driver, out.voltage_V, in.phidot_rad_s);
+    out.efficiency = model::efficiency(c_.motor, c_.driver, out.voltage_V, in.phidot_rad_s);
   } else {
     pid_.reset();
   }

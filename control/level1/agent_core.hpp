@@ -2,6 +2,7 @@
 // Level 1 of one agent (wheel-motor pair): from the tick the plant published, the voltage
 // [V] to apply over [t_k, t_k+1]. Explicit time (ticks of dt_s), no DDS, no clock.
 //   assigned by its group    -> PID on e = phidot_ref - phidot [rad/s], clamped to [0, V_B]
+//                               ([-V_B, V_B] with a bidirectional driver: it can brake)
 //   becoming active          -> the PID joins the side's running PIDs (Pid::align to the mean
 //                               voltage they applied last tick), so the side's agents share the
 //                               load evenly; with none active it starts at the back-EMF
@@ -25,6 +26,7 @@ enum class AgentState : uint8_t { kIdle = 0, kActive = 1, kHolding = 2, kCoastin
 
 struct AgentConfig {
   model::MotorParams motor;
+  model::DriverParams driver;
   model::PidParams pid;
   double wheel_radius_m = 0.035;   ///< r, m
   double dt_s = 0.01;              ///< tick period, s

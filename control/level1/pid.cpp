@@ -4,14 +4,14 @@
 
 namespace maptr::control {
 
-double Pid::update(double e, double dt, double v_max) {
+double Pid::update(double e, double dt, double v_min, double v_max) {
   if (!(dt > 0.0)) return 0.0;  // no time passed: no valid control step (never NaN)
   const double de = first_ ? 0.0 : (e - prev_error_) / dt;
   first_ = false;
   prev_error_ = e;
   const double candidate_i = integral_ + e * dt;
   const double unclamped = g_.kp * e + g_.ki * candidate_i + g_.kd * de;
-  const double out = std::clamp(unclamped, 0.0, std::max(0.0, v_max));
+  const double out = std::clamp(unclamped, v_min, std::max(v_min, v_max));
   const bool high = unclamped > out, low = unclamped < out;
   saturated_ = high || low;
   // Conditional integration: keep the new integral unless it deepens the saturation.

@@ -1,7 +1,7 @@
 #pragma once
 // Level-1 wheel-speed PID (paper eq. PID with the error sign corrected):
 //   e = phidot_ref - phidot,  V = K_P e + K_I E + K_D de/dt,  E = integral of e dt,
-// clamped to [0, V_max] (V_max = battery voltage). Anti-windup by conditional integration:
+// clamped to [V_min, V_max] (V_max = battery voltage; V_min = 0, or -V_B with an H-bridge). Anti-windup by conditional integration:
 // the integral is not advanced when the output is saturated and the error pushes further
 // into saturation. Explicit time: the caller passes dt; no clock is read.
 #include "model/params.hpp"
@@ -12,8 +12,10 @@ class Pid {
  public:
   explicit Pid(model::PidParams g = {}) : g_(g) {}
 
-  /// One control step; returns the clamped voltage, V.
-  double update(double error_rad_s, double dt_s, double v_max_V);
+  /// One control step; returns the voltage clamped to [v_min_V, max(v_min_V, v_max_V)], V.
+  double update(double error_rad_s, double dt_s, double v_min_V, double v_max_V);
+  /// The same clamped to [0, v_max_V] (a unidirectional driver).
+  double update(double error_rad_s, double dt_s, double v_max_V) { return update(error_rad_s, dt_s, 0.0, v_max_V); }
   void reset();
   /// Bumpless start: set the integral so that a zero error gives output_V.
   void preload(double output_V);

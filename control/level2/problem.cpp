@@ -74,13 +74,14 @@ void needed_side_torques(const RobotParams& rb, const EffectiveInertia& in, cons
 double loop_voltage(const Level2Problem& p, double tau_side_needed, double n, double phidot) {
   const MotorParams& m = p.robot.motor;
   const double tau_a = torque_per_active(m, tau_side_needed, n, p.robot.per_side(), phidot);
-  return soft_clamp(voltage_for_torque(m, tau_a, phidot), 0.0, p.battery_V, p.clamp_smoothing_V);
+  return soft_clamp(voltage_for_torque(m, tau_a, phidot), p.robot.driver.floor_V(p.battery_V), p.battery_V,
+                    p.clamp_smoothing_V);
 }
 
 /// Net side torque with n active motors at voltage V each, N m.
 double side_torque_at(const Level2Problem& p, double n, double voltage, double phidot) {
   const MotorParams& m = p.robot.motor;
-  return side_torque(m, n, p.robot.per_side(), armature_current(m, voltage, phidot), phidot);
+  return side_torque(m, n, p.robot.per_side(), armature_current(m, p.robot.driver, voltage, phidot), phidot);
 }
 
 }  // namespace
@@ -132,8 +133,8 @@ double horizon_efficiency(const Level2Problem& p, double n) {
                           need_l, need_r);
       const double volt_l = loop_voltage(p, need_l, n_l, ph.phidot_L);
       const double volt_r = loop_voltage(p, need_r, n_r, ph.phidot_R);
-      eta_sum +=
-          p.side == 0 ? efficiency(rb.motor, volt_l, ph.phidot_L) : efficiency(rb.motor, volt_r, ph.phidot_R);
+      eta_sum += p.side == 0 ? efficiency(rb.motor, rb.driver, volt_l, ph.phidot_L)
+                             : efficiency(rb.motor, rb.driver, volt_r, ph.phidot_R);
 
       // The currents follow the wheel speeds inside the substep; the voltages are held. At the
       // substep start the resistances are the speed loop's (body_forces() to the last bit).
@@ -169,15 +170,31 @@ double required_voltage(const Level2Problem& p, double n, double speed_scale) {
   return voltage_for_torque(rb.motor, tau_a, phidot);
 }
 
+double steady_side_torque(const Level2Problem& p) {
+  const RobotParams& rb = p.robot;
+  const BodyVelocity b = body_from_rates({p.phidot_ref_L, p.phidot_ref_R}, rb.track_m, rb.wheel_radius_m);
+  double need_l = 0.0, need_r = 0.0;
+  needed_side_torques(rb, effective_inertia(rb), body_resistances(rb, b.v_x, b.w), 0.0, 0.0, need_l, need_r);
+  return p.side == 0 ? need_l : need_r;
+}
+
+bool braking_demand(const Level2Problem& p) {
+  return p.robot.driver.bidirectional && steady_side_torque(p) < 0.0;
+}
+
 double feasibility_voltage(const Level2Problem& p, double n) {
   return required_voltage(p, n, 1.0 - p.speed_tolerance);
 }
 
-bool level2_feasible(const Level2Problem& p, double n) { return feasibility_voltage(p, n) <= p.battery_V; }
+bool level2_feasible(const Level2Problem& p, double n) {
+  const double v = feasibility_voltage(p, n);
+  return v <= p.battery_V && v >= p.robot.driver.floor_V(p.battery_V);
+}
 
 Level2Choice exhaustive_level2(const Level2Problem& p) {
   Level2Choice best;
   if (p.live <= 0) return best;
+  if (braking_demand(p)) return {p.live, level2_objective(p, p.live), level2_feasible(p, p.live)};
   bool found = false;
   for (int n = 1; n <= p.live; ++n) {
     if (!level2_feasible(p, n)) continue;

@@ -1,7 +1,13 @@
 #pragma once
 // Level 2: how many agents N_a of one side should be active (relaxed to a real n):
 //   maximise   J(n) - c n,   J = sum_{h=0}^{H-1} eta[h]  (eta of one active motor, in [0, 1])
-//   subject to 1 <= n <= live,   V_req(n) <= V_B  [V]
+//   subject to 1 <= n <= live,   V_floor <= V_req(n) <= V_B  [V]
+// (V_floor = 0, or -V_B with a bidirectional driver). A side whose steady demand is a braking
+// torque (the inner side of a tight turn, with a bidirectional driver) runs every live agent:
+// at low speed braking means driving against the motion (V < 0 < K_e phidot), whose battery
+// power grows with the square of each motor's current, so the demand is best spread over all
+// motors, and the fewest agents that can brake leave no margin (docs/MODEL.md "Level 2 in a
+// turn" has the measurement).
 // J comes from a rollout of the robot model over the horizon (H steps of step_s [s]) under a
 // model of the speed loop; c = agent_cost is a tie-break. exhaustive_level2() evaluates every
 // integer n and is the oracle the Ipopt solver (level2/solver.hpp) is tested against.
@@ -49,7 +55,14 @@ double required_voltage(const Level2Problem& p, double n_active, double speed_sc
 /// required_voltage at (1 - speed_tolerance) of the reference: the constraint's left side.
 double feasibility_voltage(const Level2Problem& p, double n_active);
 
-/// feasibility_voltage(p, n) <= battery_V.
+/// The net torque this side must give to hold the reference in steady state, N m.
+double steady_side_torque(const Level2Problem& p);
+
+/// True when the side's steady demand is a braking torque and the driver can brake: then every
+/// live agent runs (exhaustive_level2() and the solver alike).
+bool braking_demand(const Level2Problem& p);
+
+/// driver floor <= feasibility_voltage(p, n) <= battery_V.
 bool level2_feasible(const Level2Problem& p, double n_active);
 
 struct Level2Choice {

@@ -288,11 +288,11 @@ Level2Result Level2Solver::solve(const Level2Problem& p) {
   Level2Result res;
   const int live = p.live;
 
-  if (live <= 1) {
+  if (live <= 1 || braking_demand(p)) {  // nothing to choose, or every live agent brakes
     res.n_active = std::max(live, 0);
     res.n_relaxed = res.n_active;
-    res.feasible = live == 1 && level2_feasible(p, 1.0);
-    res.objective = live == 1 ? level2_objective(p, 1.0) : 0.0;
+    res.feasible = live >= 1 && level2_feasible(p, res.n_active);
+    res.objective = live >= 1 ? level2_objective(p, res.n_active) : 0.0;
     res.ipopt_status = kLevel2NotSolved;
   } else {
     const double lo = 1.0, hi = live;

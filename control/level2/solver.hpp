@@ -20,7 +20,7 @@
 
 namespace maptr::control {
 
-/// ipopt_status when Ipopt was not called (live <= 1: nothing to choose).
+/// ipopt_status when Ipopt was not called (live <= 1, or a braking demand: nothing to choose).
 constexpr int kLevel2NotSolved = 100;
 /// ipopt_status when Ipopt could not be initialised (invalid option; should not happen).
 constexpr int kLevel2InitFailed = 101;

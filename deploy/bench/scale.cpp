@@ -114,7 +114,7 @@ void plot(const std::string& dir) {
 /// The default scenario with n agents, every moving segment at kScaleSpeed, the last one
 /// stretched to the bench's duration.
 config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string& mode) {
-  config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/default.yaml");
+  config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/paper.yaml");
   s.robot.agents = n;
   s.mode = mode;
   s.duration_s = o.duration_s;

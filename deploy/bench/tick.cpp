@@ -48,7 +48,7 @@ std::string cost_md(const FleetCost& c) {
 
 int bench_tick(const BenchOptions& o) {
   const int n = o.agents.size() == 1 ? o.agents.front() : 16;
-  config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/default.yaml");
+  config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/paper.yaml");
   s.robot.agents = n;
   s.duration_s = o.duration_s;
   s.trajectory.segments = {config::Segment{"straight", kTickSpeed, 0.0, o.duration_s}};

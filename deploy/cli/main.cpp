@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
   TopArgs top_args;
   auto* run = add_run_command(app, run_args);
   auto* level2 = add_level2_command(app, level2_args);
+  ReachArgs reach_args;
+  auto* reach = add_reach_command(app, reach_args);
   auto* experiment = add_experiment_command(app, experiment_args);
   auto* bench = add_bench_command(app, bench_args);
   auto* fuzz = add_fuzz_command(app, fuzz_args);
@@ -67,6 +69,7 @@ int main(int argc, char** argv) {
     if (bench->parsed()) return cmd_bench(bench_args, bin_dir(argv[0]));
     if (fuzz->parsed()) return cmd_fuzz(fuzz_args, bin_dir(argv[0]));
     if (level2->parsed()) return cmd_level2(level2_args);
+    if (reach->parsed()) return cmd_reach(reach_args);
     if (kill->parsed()) return cmd_signal("kill", kill_args);
     if (restart->parsed()) return cmd_signal("restart", restart_args);
     if (top->parsed()) return cmd_top(top_args, bin_dir(argv[0]));

@@ -91,6 +91,7 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--agents", a.agents, "number of agents N (multiple of 4)");
   run->add_option("--gross-kg", a.gross_kg, "gross mass, kg");
   run->add_option("--motor", a.motor, "motor type I or II");
+  run->add_option("--driver", a.driver, "motor driver: unidirectional (no braking) or bidirectional (H-bridge)");
   run->add_option("--mode", a.mode, "all (every agent, the paper's NO) or ec (energy-conscious)");
   run->add_option("--duration", a.duration, "simulated seconds");
   run->add_option("--speed", a.speed, "speed of every moving segment, m/s");
@@ -146,7 +147,8 @@ Scenario scenario_from(const RunArgs& a) {
       {"--duration", "duration_s", &RunArgs::duration},  {"--tick-hz", "tick_hz", &RunArgs::tick_hz},
       {"--trace-every", "trace_every", &RunArgs::trace_every}, {"--record", "record", &RunArgs::record},
       {"--tick-filter", "tick_filter", &RunArgs::tick_filter},
-      {"--plant-priority", "plant_priority", &RunArgs::plant_priority}};
+      {"--plant-priority", "plant_priority", &RunArgs::plant_priority},
+      {"--driver", "robot.driver", &RunArgs::driver}};
   Scenario s = config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);
   for (const auto& o : kOverrides)
     if (!(a.*o.value).empty()) config::set_field(s, o.path, a.*o.value, o.option);

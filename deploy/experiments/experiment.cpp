@@ -28,7 +28,7 @@ std::string file_text(const std::string& path) {
 }  // namespace
 
 config::Scenario Experiment::base() const {
-  config::Scenario s = config::load_scenario(o_.source_dir + "/deploy/scenarios/default.yaml");
+  config::Scenario s = config::load_scenario(o_.source_dir + "/deploy/scenarios/paper.yaml");
   s.tick_hz = tick_hz();
   return s;
 }

@@ -71,6 +71,7 @@ void add_run_figures(nlohmann::json& s, const nlohmann::json& plant, const RunRe
   s["active_agents"] =
       plant.value("active_agents", nlohmann::json{{"L", last.active_L}, {"R", last.active_R}});
   s["battery_discharge_mAh"] = plant.value("battery_discharge_mAh", nlohmann::json{{"L", 0}, {"R", 0}});
+  s["path"] = plant.value("path", nlohmann::json::object());
 }
 
 }  // namespace
@@ -215,6 +216,16 @@ std::string human_summary(const nlohmann::json& s) {
                 s["processes"].empty() ? 0.0 : rss_sum / 1024.0 / s["processes"].size(),
                 s.value("trace_sha256", "").c_str());
   os << buf;
+  if (s.contains("path") && s["path"].is_object() && !s["path"].empty()) {
+    const auto& p = s["path"];
+    std::snprintf(buf, sizeof(buf),
+                  "path        cross-track max %.3f m (t = %.2f s), rms %.3f m; heading error max %.3f rad; "
+                  "final position error %.3f m\n",
+                  p.value("cross_track_max_m", 0.0), p.value("cross_track_max_t_s", 0.0),
+                  p.value("cross_track_rms_m", 0.0), p.value("heading_error_max_rad", 0.0),
+                  p.value("final_position_error_m", 0.0));
+    os << buf;
+  }
   // The plant's lock-step thread without its real-time priority (no privilege): said once here.
   const std::string sched =
       s.contains("plant") && s["plant"].is_object() ? s["plant"].value("loop_scheduling", "") : "";

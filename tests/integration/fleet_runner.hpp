@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 // Runs the real `maptr` CLI (and so the real fleet of processes) for integration tests: a
 // private DDS domain, a temporary results folder, a wall-clock timeout after which the
 // launcher is killed by its PID (its children die with it), and the folder removed afterwards.
@@ -52,9 +53,14 @@ inline int private_domain() {
   return 100 + (static_cast<int>(getpid()) * 7 + counter++) % 120;
 }
 
-/// `maptr run EXTRA... --out OUT --domain <private> --quiet`.
+/// `maptr run EXTRA... --out OUT --domain <private> --quiet`; without a scenario file in EXTRA,
+/// the paper's straight line (deploy/scenarios/paper.yaml), which these tests are written for.
 inline std::vector<std::string> run_args(const std::string& out, std::vector<std::string> extra) {
   std::vector<std::string> a = {"run"};
+  const bool has_scenario = std::any_of(extra.begin(), extra.end(), [](const std::string& e) {
+    return e.size() > 5 && e.compare(e.size() - 5, 5, ".yaml") == 0;
+  });
+  if (!has_scenario) a.push_back(std::string(MAPTR_SOURCE_DIR) + "/deploy/scenarios/paper.yaml");
   a.insert(a.end(), extra.begin(), extra.end());
   for (const std::string& s : {std::string("--out"), out, std::string("--domain"), std::to_string(private_domain()),
                                std::string("--quiet")})

@@ -126,7 +126,7 @@ TEST(Dynamics, InactiveMotorsDrawNothingAndOnlyDrag) {
   const mm::MotorParams m = mm::motor_type("I");
   const std::vector<double> volts = {24.0, 24.0, 24.0};
   const std::vector<uint8_t> off = {0, 0, 0};
-  const mm::SideLoad s = mm::side_load(m, volts, off, 200.0);
+  const mm::SideLoad s = mm::side_load(m, {}, volts, off, 200.0);
   EXPECT_EQ(s.current_A, 0.0);
   EXPECT_EQ(s.power_W, 0.0);
   EXPECT_EQ(s.joule_W, 0.0);
@@ -182,7 +182,7 @@ TEST_P(SteadyState, SpeedAndCurrentMatchTheHandSolution) {
   }
   // Current over the last second from the charge ledger (mAh -> A: * 3.6 / 1 s).
   const double i_run = (x[mm::kChargeL] - charge_l_1s_before) * 3.6 / 1.0;
-  const double i_run_r = mm::side_load(p.motor, u.voltage_R, u.active_R, x[mm::kVx] / r).current_A;
+  const double i_run_r = mm::side_load(p.motor, {}, u.voltage_R, u.active_R, x[mm::kVx] / r).current_A;
 
   // Tolerances: speed 1e-4 relative, current 1e-4 A (the run lasts > 10 time constants).
   EXPECT_NEAR(x[mm::kVx], v_star, 1e-4 * v_star);

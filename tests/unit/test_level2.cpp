@@ -123,7 +123,7 @@ TEST(Level2Model, TransientRolloutConvergesToSteadyState) {
   const Level2Problem p = straight(16, 20.0, 10.0, 23.4);
   for (int n : {2, 4, 8}) {
     const double v = required_voltage(p, n);
-    const double eta_ss = maptr::model::efficiency(p.robot.motor, v, p.phidot_ref_L);
+    const double eta_ss = maptr::model::efficiency(p.robot.motor, {}, v, p.phidot_ref_L);
     EXPECT_NEAR(horizon_efficiency(p, n), p.horizon * eta_ss, 1e-6) << "n " << n;
   }
 }

@@ -25,7 +25,7 @@ constexpr double kRpmPerRadS = 60.0 / (2.0 * M_PI);
 // active_torque(armature_current(v, w), w) = 0 over (1 rad/s, v / K_e] (at v / K_e the current is 0
 // and the torque is -K_T I_0 - b w < 0).
 double no_load_speed_by_bisection(const MotorParams& m, double v) {
-  auto f = [&](double w) { return mm::active_torque(m, mm::armature_current(m, v, w), w); };
+  auto f = [&](double w) { return mm::active_torque(m, mm::armature_current(m, {}, v, w), w); };
   return bisect(f, 1.0, v / m.back_emf_Vs, 1e-12);
 }
 
@@ -50,7 +50,7 @@ TEST(Motor, TypeINoLoadSpeedAndStallTorque) {
   EXPECT_NEAR(ts, 0.0382 * 24.0 / 7.03, 1e-15);
   record("typeI_stall_rel_err_vs_datasheet", (ts - 0.130) / 0.130);
   // At standstill the model's torque is exactly K_T V / R (smooth sign of 0 is 0): 1e-15.
-  EXPECT_NEAR(mm::active_torque(m, mm::armature_current(m, 24.0, 0.0), 0.0), ts, 1e-15);
+  EXPECT_NEAR(mm::active_torque(m, mm::armature_current(m, {}, 24.0, 0.0), 0.0), ts, 1e-15);
 }
 
 TEST(Motor, TypeIINoLoadSpeedAndStallTorque) {
@@ -85,7 +85,7 @@ double efficiency_peak_fraction(const MotorParams& m, double v, double* eta_max)
   double best = -1.0, best_w = 0.0;
   for (int k = 0; k <= n; ++k) {
     const double w = w0 * k / n;
-    const double eta = mm::efficiency(m, v, w);
+    const double eta = mm::efficiency(m, {}, v, w);
     EXPECT_GE(eta, 0.0) << "w = " << w;
     EXPECT_LE(eta, 1.0) << "w = " << w;
     if (eta > best) {
@@ -94,7 +94,7 @@ double efficiency_peak_fraction(const MotorParams& m, double v, double* eta_max)
     }
   }
   *eta_max = best;
-  return mm::active_torque(m, mm::armature_current(m, v, best_w), best_w) / ts;
+  return mm::active_torque(m, mm::armature_current(m, {}, v, best_w), best_w) / ts;
 }
 
 TEST(Motor, EfficiencyBoundsZerosAndPeakLocation) {
@@ -103,10 +103,10 @@ TEST(Motor, EfficiencyBoundsZerosAndPeakLocation) {
     for (double frac : {1.0, 0.5, 0.25}) {
       const double v = frac * m.rated_voltage_V;
       // Zero at stall (no output power) and at no load (no output torque); 1e-9 absolute.
-      EXPECT_NEAR(mm::efficiency(m, v, 0.0), 0.0, 1e-12);
-      EXPECT_NEAR(mm::efficiency(m, v, mm::no_load_speed(m, v)), 0.0, 1e-9);
+      EXPECT_NEAR(mm::efficiency(m, {}, v, 0.0), 0.0, 1e-12);
+      EXPECT_NEAR(mm::efficiency(m, {}, v, mm::no_load_speed(m, v)), 0.0, 1e-9);
       // Beyond no load the motor brakes: efficiency reported as 0.
-      EXPECT_EQ(mm::efficiency(m, v, 1.05 * mm::no_load_speed(m, v)), 0.0);
+      EXPECT_EQ(mm::efficiency(m, {}, v, 1.05 * mm::no_load_speed(m, v)), 0.0);
       double eta_max = 0.0;
       const double peak = efficiency_peak_fraction(m, v, &eta_max);
       // Paper: maximum efficiency around 10-20 % of stall torque; asserted range 5-30 %.
@@ -156,12 +156,12 @@ TEST(Motor, EfficiencyBoundsZerosAndPeakLocation) {
 TEST(Motor, CurrentIsNeverNegativeNoRegeneration) {
   const MotorParams m = mm::motor_type("I");
   // I_a = (V - K_e w) / R: at 12 V and 100 rad/s (12 - 3.84) / 7.03 = 1.16074 A.
-  EXPECT_NEAR(mm::armature_current(m, 12.0, 100.0), (12.0 - 3.84) / 7.03, 1e-14);
+  EXPECT_NEAR(mm::armature_current(m, {}, 12.0, 100.0), (12.0 - 3.84) / 7.03, 1e-14);
   // Back-emf above the supply: the driver does not regenerate, the current is clamped to 0.
-  EXPECT_EQ(mm::armature_current(m, 12.0, 400.0), 0.0);
-  EXPECT_EQ(mm::armature_current(m, 0.0, 10.0), 0.0);
+  EXPECT_EQ(mm::armature_current(m, {}, 12.0, 400.0), 0.0);
+  EXPECT_EQ(mm::armature_current(m, {}, 0.0, 10.0), 0.0);
   // Negative voltage is not a reverse drive either (no reversing modelled).
-  EXPECT_EQ(mm::armature_current(m, -12.0, 0.0), 0.0);
+  EXPECT_EQ(mm::armature_current(m, {}, -12.0, 0.0), 0.0);
 }
 
 TEST(Motor, NoLoadCurrentTermIsFrictionThatOpposesMotion) {
@@ -188,7 +188,7 @@ TEST(Motor, VoltageForTorqueInvertsTheModel) {
     for (double w : {0.0, 0.3, 10.0, 200.0, 500.0}) {
       for (double tau : {1e-3, 5e-3, 1e-2}) {
         const double v = mm::voltage_for_torque(m, tau, w);
-        const double back = mm::active_torque(m, mm::armature_current(m, v, w), w);
+        const double back = mm::active_torque(m, mm::armature_current(m, {}, v, w), w);
         EXPECT_NEAR(back, tau, 1e-15) << type << " w = " << w << " tau = " << tau;
       }
     }

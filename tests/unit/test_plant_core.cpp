@@ -99,8 +99,8 @@ TEST(PlantCore, EnergyIsTheIntegralOfVoltageTimesCurrent) {
   // Trapezoid rule on V * I(V, phidot) of every motor at the tick boundaries.
   auto power = [&] {
     return n * volts *
-           (model::armature_current(p.motor, volts, core.phidot(0)) +
-            model::armature_current(p.motor, volts, core.phidot(1)));
+           (model::armature_current(p.motor, {}, volts, core.phidot(0)) +
+            model::armature_current(p.motor, {}, volts, core.phidot(1)));
   };
   double energy = 0.0;
   for (int k = 0; k < 500; ++k) {

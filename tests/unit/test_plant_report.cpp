@@ -139,7 +139,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "tick_timing_us",
                                          "declared_dead_by_deadline",
                                          "membership_events",
-                                         "group_wear"}));
+                                         "group_wear", "path"}));
   EXPECT_EQ(j["live_agents"]["R"], 7);
   EXPECT_EQ(j["rejected_samples"], 3);
   EXPECT_EQ(j["late_samples"], 2);

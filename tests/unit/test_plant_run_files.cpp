@@ -46,7 +46,7 @@ TEST(PlantRunFiles, TraceAndAssignmentRows) {
   const auto t = lines(trace);
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[0].rfind("tick,t_s,x_m,", 0), 0u);
-  EXPECT_EQ(t[1], "3,0.030000,0,0,0,0.25,0,0,0,7,0,12,0,0,0,0,0.123457,0,0,0,0,2,0,0,4,3.5,0");
+  EXPECT_EQ(t[1], "3,0.030000,0,0,0,0.25,0,0,0,7,0,12,0,0,0,0,0.123457,0,0,0,0,2,0,0,4,3.5,0,0,0,0,0");
   EXPECT_EQ(lines(assign), (std::vector<std::string>{"t_s,side,driving", "0.030000,R,1001"}));
   std::filesystem::remove_all(dir);
 }

@@ -32,7 +32,7 @@ std::string plant_format(long long tick, const double d[21], const int n[4], dou
   std::snprintf(
       buf, sizeof(buf),
       "%lld,%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%.9g,%.9g,"
-      "%.9g,%.9g,%d,%d,%d,%d,%.9g,%.9g\n",
+      "%.9g,%.9g,%d,%d,%d,%d,%.9g,%.9g,0,0,0,0\n",
       tick, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8], d[9], d[10], d[11], d[12], d[13], d[14],
       d[15], d[16], d[17], d[18], d[19], n[0], n[1], n[2], n[3], energy, distance);
   return buf;
@@ -78,7 +78,8 @@ TEST(TraceRecord, HeaderIsThePlantsHeader) {
       trace_header(),
       "tick,t_s,x_m,y_m,theta_rad,v_x_mps,w_radps,phidot_L_radps,phidot_R_radps,ref_L_radps,ref_R_radps,"
       "V_L_mean_V,V_R_mean_V,I_L_A,I_R_A,eff_L,eff_R,battery_V_L,battery_V_R,discharge_L_mAh,"
-      "discharge_R_mAh,n_active_L,n_active_R,n_live_L,n_live_R,energy_J,distance_m\n");
+      "discharge_R_mAh,n_active_L,n_active_R,n_live_L,n_live_R,energy_J,distance_m,ref_x_m,ref_y_m,ref_theta_rad,"
+      "cross_track_m\n");
 }
 
 TEST(TraceRecord, RowsAreByteIdenticalToThePlantsFormat) {

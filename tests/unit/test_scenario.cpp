@@ -242,7 +242,8 @@ TEST(Scenario, ARadiusOutsideAnArcIsRefused) {
 
 TEST(Scenario, AnArcRadiusGivesTheYawRate) {
   const Scenario s = parse_scenario(
-      "trajectory:\n  segments:\n    - {type: arc, speed_mps: 2, radius_m: -4, duration_s: 5}\n", "t");
+      "robot: {driver: bidirectional}\n"
+      "trajectory:\n  segments:\n    - {type: arc, speed_mps: 1.5, radius_m: -3, duration_s: 5}\n", "t");
   EXPECT_DOUBLE_EQ(s.trajectory.segments[0].yaw_rate_rad_s, -0.5);
 }
 
@@ -338,7 +339,9 @@ TEST(Scenario, ALongUnknownKeyIsQuotedShort) {
 TEST(Scenario, ToYamlReadsBackIdentical) {
   const std::string text =
       "name: arc.1\nagents: 32\nmotor: II\ngross_mass_kg: 14.4\nmode: all\nduration_s: 30\ntick_hz: 200\n"
-      "trace_every: 3\nstop_below_speed_pct: 12.5\nrobot: {track_m: 0.25, yaw_inertia_kgm2: 0.3}\n"
+      "trace_every: 3\nstop_below_speed_pct: 12.5\n"
+      "robot: {track_m: 0.25, yaw_inertia_kgm2: 0.3, driver: bidirectional, regeneration: true, "
+      "charge_limit_A: 2.5}\n"
       "battery: {initial_discharge_mAh: 6000, h: -1.851e-14}\ncontrol: {kp: 0.7, ki: 1.3, oracle: true}\n"
       "trajectory:\n  accel_mps2: 0.5\n  segments:\n    - {type: straight, speed_mps: 1.5, duration_s: 10}\n"
       "    - {type: arc, speed_mps: 1, radius_m: -3, duration_s: 10}\n    - {type: stop, duration_s: 5}\n"
