@@ -64,8 +64,6 @@ class TickFollower {
 
   /// Ticks dropped as malformed, stale, undecodable or not from the plant so far.
   uint64_t rejected() const { return rejected_.load() + ticks_.undecodable(); }
-  /// Ticks skipped because they mark this process as paused.
-  uint64_t skipped_paused() const { return skipped_paused_.load(); }
 
  private:
   const ProcessArgs& args_;

@@ -4,7 +4,7 @@
 // main with the request's arguments, environment and output, as if it had been started with
 // exec. Starting an agent this way skips the loader, whose relocations of Fast DDS, OpenSSL
 // and libstdc++ were a fifth of an agent's start-up CPU in a fleet's discovery
-// (BENCHMARKS.md, "Agents forked from a zygote").
+// (docs/bench/HISTORY.md, "Agents forked from a zygote").
 //
 // The requester (the launcher) is a child subreaper (PR_SET_CHILD_SUBREAPER) and the zygote's
 // parent. The zygote forks twice and reaps the middle process before it answers, so a copy is

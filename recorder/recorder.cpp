@@ -21,7 +21,8 @@ constexpr int32_t kMinDepth = 256;
 constexpr int32_t kOtherWriters = 5;
 constexpr const char* kLibrary = "maptr recorder";
 /// The file thread is woken by a full batch or this period, whichever comes first: waking it
-/// for every sample cost two context switches per sample (BENCHMARKS.md, "Recording").
+/// for every sample cost two context switches per sample (docs/bench/HISTORY.md, "The recorder's
+/// file thread woken in batches").
 constexpr std::size_t kWakeBatch = 512;
 constexpr auto kWritePeriod = std::chrono::milliseconds(50);
 /// The samples reach the recorder one by one, and each one would wake its receive thread (a

@@ -88,9 +88,6 @@ void CvodeIntegrator::step(model::State& x, const model::Inputs& u, double t, do
   check(CVodeSetStopTime(im.mem, t + dt), "CVodeSetStopTime");
   realtype t_reached = t;
   check(CVode(im.mem, t + dt, im.y, &t_reached, CV_NORMAL), "CVode");
-  long nst = 0;
-  CVodeGetNumSteps(im.mem, &nst);
-  last_steps_ = nst;
   for (int i = 0; i < model::kStateSize; ++i) x[i] = y[i];
   im.u = nullptr;
 }

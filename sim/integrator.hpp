@@ -25,8 +25,6 @@ class CvodeIntegrator {
   /// CVODE failure (with CVODE's flag).
   void step(model::State& state, const model::Inputs& u, double t, double dt);
 
-  /// Internal steps taken by CVODE in the last call (diagnostics).
-  long last_internal_steps() const { return last_steps_; }
   const model::RobotParams& params() const { return p_; }
 
  public:
@@ -36,7 +34,6 @@ class CvodeIntegrator {
   model::RobotParams p_;
   IntegratorOptions o_;
   std::unique_ptr<Impl> impl_;
-  long last_steps_ = 0;
 };
 
 /// Classic fixed-step RK4 with the same inputs held (reference for tests and benches).

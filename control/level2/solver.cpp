@@ -268,9 +268,10 @@ Level2Solver::Level2Solver(Level2SolverConfig config) : impl_(std::make_unique<I
   o->SetStringValue("hessian_approximation", config.fd_hessian ? "exact" : "limited-memory");
   o->SetIntegerValue("max_iter", config.max_iter);
   o->SetStringValue("mu_strategy", "monotone");  // cheaper than adaptive here (BENCHMARKS.md)
-  // Per-solve costs (BENCHMARKS.md): no gradient scaling (|grad| stays far below its threshold),
-  // no least-squares constraint multipliers at a cold start, no forced iterative refinement,
-  // a small MUMPS workspace; a warm start's point and multipliers stay where they were.
+  // Per-solve costs (docs/bench/HISTORY.md, "Solve time after re-using Ipopt"): no gradient
+  // scaling (|grad| stays far below its threshold), no least-squares constraint multipliers at a
+  // cold start, no forced iterative refinement, a small MUMPS workspace; a warm start's point and
+  // multipliers stay where they were.
   o->SetStringValue("nlp_scaling_method", "none");
   o->SetNumericValue("constr_mult_init_max", 0.0);
   o->SetIntegerValue("min_refinement_steps", 0);

@@ -42,7 +42,7 @@ struct Level2SolverConfig {
   /// where J(n) has kinks (speed above the reference: the loop brakes, the voltage clamps at 0)
   /// and failed at 100 as well in maptr_level2_bench, and an unconverged solve's integer choice
   /// compares every n anyway. 100 changed no decision there and made such solves cost up to
-  /// 145 ms instead of 23 ms (BENCHMARKS.md, "Level-2 solver").
+  /// 145 ms instead of 23 ms (docs/bench/HISTORY.md, "Ipopt's iteration limit").
   int max_iter = 30;
   void validate() const;   ///< throws model::ParamError naming the field
 };

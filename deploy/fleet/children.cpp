@@ -34,7 +34,7 @@ constexpr std::chrono::milliseconds kStopPoll{10};
 // the launcher's address space (its DDS participant, the recorder's queues) is not copied, so
 // neither the launcher nor the child pays for the copy of its page tables, the copy-on-write
 // faults that follow (each with a TLB shoot-down on the launcher's other threads' core) and the
-// unmapping of the copy at exec (BENCHMARKS.md, "The launcher starts its children without
+// unmapping of the copy at exec (docs/bench/HISTORY.md, "The launcher starts its children without
 // copying itself"). posix_spawn itself cannot set the parent-death signal. The child shares the
 // launcher's memory until exec, so it makes system calls only, and no signal handler of the
 // launcher runs in it: all signals stay blocked until its handlers are reset to the default.

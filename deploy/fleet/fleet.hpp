@@ -127,7 +127,7 @@ class Fleet {
   std::unique_ptr<ControlFifo> fifo_;
   FaultSchedule schedule_;
   PlantClock clock_;
-  StallWatch stall_{FleetConfig{}.stall_s};
+  StallWatch stall_;
   long gates_seen_ = 0;
   std::set<std::string> ready_names_;
   Clock::time_point t_launch_, t_run_, last_wave_, last_print_, last_progress_;
