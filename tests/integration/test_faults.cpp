@@ -170,6 +170,11 @@ TEST(Faults, AnAgentStartedOutsideTheLauncherIsDetectedByLiveliness) {
   EXPECT_GT((*e)["t_s"].get<double>(), 4.9);
   EXPECT_EQ(s["status"], "ok");
   EXPECT_EQ(s["plant"]["live_agents"]["L"], 7);
+  // Its pid was taken only after the launcher checked it (its binary, this fleet's id and its
+  // participant id in its environment): the one the test started.
+  for (const auto& p : s["processes"])
+    if (p["name"] == "L3") EXPECT_EQ(p["pid"].get<pid_t>(), agent) << p.dump();
+  EXPECT_EQ(s["rejected_ready"]["forged"], 0);
 }
 
 TEST(Faults, ChaosRunWithAFixedSeedEndsWithoutACrash) {
