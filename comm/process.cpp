@@ -88,10 +88,10 @@ namespace maptr::comm {
 
 namespace {
 
-/// True when the MAPTR_TEST_SILENT_ONCE hook names this process and its file is not there yet
-/// (the file is then created).
-bool silenced_once(const std::string& name) {
-  const char* hook = std::getenv(kTestSilentOnceEnv);
+/// True when the hook `env` (MAPTR_TEST_SILENT_ONCE, MAPTR_TEST_ABORT_ONCE) names this process
+/// and its file is not there yet (the file is then created).
+bool hooked_once(const char* env, const std::string& name) {
+  const char* hook = std::getenv(env);
   if (!hook) return false;
   const std::string h = hook;
   const auto colon = h.find(':');
@@ -105,7 +105,8 @@ bool silenced_once(const std::string& name) {
 }  // namespace
 
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind) {
-  if (silenced_once(name)) return;
+  if (hooked_once(kTestAbortOnceEnv, name)) std::abort();
+  if (hooked_once(kTestSilentOnceEnv, name)) return;
   msg::NodeReady r;
   r.name(name);
   r.kind(kind);

@@ -48,9 +48,13 @@ namespace maptr::comm {
 /// Test hook (environment): "NAME:PATH" makes process NAME withhold its NodeReady while the
 /// file PATH does not exist, and create it: the first start of NAME never reports ready.
 inline constexpr const char* kTestSilentOnceEnv = "MAPTR_TEST_SILENT_ONCE";
+/// Test hook (environment): "NAME:PATH" makes process NAME abort (SIGABRT, as a failed assertion
+/// in Fast DDS does) instead of reporting ready while the file PATH does not exist, and create it:
+/// the first start of NAME dies during discovery.
+inline constexpr const char* kTestAbortOnceEnv = "MAPTR_TEST_ABORT_ONCE";
 
 /// Publishes this process's NodeReady (once every needed endpoint is matched), unless the
-/// MAPTR_TEST_SILENT_ONCE hook withholds it.
+/// MAPTR_TEST_SILENT_ONCE hook withholds it or the MAPTR_TEST_ABORT_ONCE hook aborts instead.
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind);
 
 /// Follows the plant's liveliness on a reader of its ticks. The plant counts as lost once a

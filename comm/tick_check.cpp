@@ -3,31 +3,14 @@
 #include <cmath>
 #include <limits>
 
+#include "idl/rules.hpp"
+
 namespace maptr::comm {
 
-namespace {
-/// V_active is the mean of tick k-1's voltages, clamped to that tick's battery voltage; the
-/// battery's voltage at t_k may be a little lower.
-constexpr double kVoltageMargin = 1.01;
-
-bool side_valid(const msg::SideTick& s, std::size_t per_side) {
-  for (double v : {s.phidot(), s.battery_V(), s.discharge_mAh(), s.phidot_ref(), s.V_active(), s.phidot_prev(),
-                   s.phidot_ref_prev()})
-    if (!std::isfinite(v)) return false;
-  return s.active().size() == per_side && s.live().size() == per_side && s.wake().size() == per_side &&
-         s.battery_V() >= 0 &&
-         s.V_active() >= -kVoltageMargin * s.battery_V() && s.n_active() <= per_side && s.relay_count() <= per_side;
-}
-}  // namespace
-
 bool tick_valid(const msg::PlantTick& t, std::size_t per_side) {
-  for (double v : {t.t(), t.dt(), t.x(), t.y(), t.theta(), t.v_x(), t.w(), t.energy_J(), t.distance_m()})
-    if (!std::isfinite(v)) return false;
-  if (t.run_state() > msg::RUN_ABORTED) return false;
-  for (const msg::SideTick& s : t.sides())
-    if (!side_valid(s, per_side)) return false;
-  // The paused mask: empty, or one entry per member (agents, groups, central).
-  return t.paused().empty() || t.paused().size() == 2 * per_side + 3;
+  msg::FleetBounds b;
+  b.per_side = per_side;
+  return msg::well_formed(t, b);  // the rule beside the IDL type (idl/rules.hpp)
 }
 
 TickVerdict classify_tick(const msg::PlantTick& t, std::size_t per_side, long long last_tick) {

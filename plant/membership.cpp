@@ -64,32 +64,36 @@ void Membership::mark_dead(const MemberId& id, const char* why) {
   record(id, why);
 }
 
-void Membership::on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name) {
-  launcher_seq_ = std::max(launcher_seq_, seq);
+bool Membership::on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name) {
+  // The launcher numbers its events 1, 2, ...: one not above the last applied is no news, and
+  // an unknown kind says nothing; neither moves the sequence a fault gate waits for.
+  if (seq <= launcher_seq_ || kind == LauncherEvent::kOther) return false;
+  launcher_seq_ = seq;
   const auto id = find(name);
-  if (!id || kind == LauncherEvent::kOther) return;
+  if (!id) return true;  // about the plant itself: only its number counts
   Member& m = at(*id);
   if (kind == LauncherEvent::kDied) {
     // A process killed while paused was already out: its death is still a change of its own.
     if (m.paused) record(*id, "died (launcher)");
     m.paused = false;
     mark_dead(*id, "died (launcher)");
-    return;
+    return true;
   }
   if (kind == LauncherEvent::kPaused) {
     m.paused = true;
     m.rejoining = false;
     m.live = false;
     record(*id, "paused (launcher)");
-    return;
+    return true;
   }
   // Started again, or resumed: waited for from now on; a resumed process keeps its writer.
-  if (kind == LauncherEvent::kResumed && !m.paused) return;
+  if (kind == LauncherEvent::kResumed && !m.paused) return true;
   record(*id, kind == LauncherEvent::kResumed ? "resumed (launcher)" : "started (launcher)");
   if (kind == LauncherEvent::kStarted) m.writer_known = false;
   m.paused = false;
   m.live = true;
   m.rejoining = true;
+  return true;
 }
 
 void Membership::on_liveliness_lost(Role role, const WriterId& writer) {

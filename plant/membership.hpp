@@ -78,8 +78,10 @@ class Membership {
   /// Launcher event number seq about process `name`: a death ends the wait for it; a started
   /// (restarted) process is waited for from now on, and its old writer no longer counts; a
   /// paused process is out from now on (its ticks say so, and the loss of its lease is no
-  /// news); a resumed one is waited for again from now on, on the same writer.
-  void on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name);
+  /// news); a resumed one is waited for again from now on, on the same writer. The caller has
+  /// checked the event (plant/validation.hpp); `name` is a member or the plant. False (nothing
+  /// applied, the sequence unchanged) for seq not above launcher_seq() or kind kOther.
+  bool on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name);
   /// Highest launcher event number applied so far.
   uint64_t launcher_seq() const { return launcher_seq_; }
   /// A writer of `role`'s topic lost its liveliness: the member whose current writer it is dies

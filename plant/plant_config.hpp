@@ -14,6 +14,9 @@ struct PlantNodeConfig {
   double deadline_per_agent_s = 0.05;
   /// Largest accepted |wheel speed reference| from central, rad/s.
   double central_ref_bound_radps = 1e4;
+  /// Largest accepted |body speed| and |yaw rate| references from central, m/s and rad/s.
+  double central_v_bound_mps = 1e2;
+  double central_w_bound_radps = 1e2;
   /// Tolerance above the side's battery voltage an agent's applied voltage may reach, V.
   double voltage_tolerance_V = 1e-9;
   /// Final speed error above which a run that reached its reference is degraded, %.

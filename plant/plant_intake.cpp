@@ -14,16 +14,35 @@ bool PlantLoop::admit(Verdict v, bool own, unsigned long long tick, long long k,
                       int index) {
   if (own && repeated(v, tick, k)) return false;
   if (own && late(v, tick, k)) {
+    ++kinds_["late"];
     if (++late_ <= kRejectsLogged)
       log_.info("a late {} (side {}, index {}) for tick {} at tick {}: not used", what, side, index, tick, k);
     return false;
   }
   if (own && v == Verdict::kAccepted) return true;
-  if (++rejected_ <= kRejectsLogged)
+  // Not its sender's: forged (even when malformed too); its sender's: malformed, or an answer
+  // to a tick after k (none has been sent): other_tick.
+  const char* kind = !own ? "forged" : v == Verdict::kMalformed ? "malformed" : "other_tick";
+  if (reject(kind) <= kRejectsLogged)
     log_.warn("rejected a{} {} (side {}, index {}) for tick {} at tick {}{}",
               v == Verdict::kMalformed ? " malformed" : "", what, side, index, tick, k,
               own ? "" : ", from a participant other than its sender's");
   return false;
+}
+
+bool PlantLoop::once(Once o, const char* what, int side, int index, long long k) {
+  if (o == Once::kFirst) return true;
+  if (o == Once::kConflict && reject("conflicting") <= kRejectsLogged)
+    log_.warn(
+        "rejected a second, different {} (side {}, index {}) for tick {} from the same writer: the first is "
+        "used",
+        what, side, index, k);
+  return false;
+}
+
+uint64_t PlantLoop::reject(const char* kind) {
+  ++kinds_[kind];
+  return ++rejected_;
 }
 
 void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
@@ -32,6 +51,9 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
   for (auto& [r, h] : replies) {
     const bool own = sent_by(h, comm::agent_participant_id(r.side(), r.index(), sc_.robot.agents));
     if (!admit(check(r, lim, k), own, r.tick(), k, "agent reply", r.side(), r.index())) continue;
+    if (!once(once_reply_[r.side()][r.index()].see(r, k), "agent reply", r.side(), r.index(),
+              k))
+      continue;
     if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
     ++taken_[0];
     membership_.on_answer({Role::kAgent, static_cast<int>(r.side()), r.index()}, writer_id(h));
@@ -47,6 +69,7 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
     const bool own = sent_by(h, comm::group_participant_id(g.side()));
     if (!admit(check(g, lim, k), own, g.tick(), k, "group status", g.side(), 0)) continue;
     const int s = g.side();
+    if (!once(once_group_[s].see(g, k), "group status", s, 0, k)) continue;
     ++taken_[1];
     membership_.on_answer({Role::kGroup, s, 0}, writer_id(h));
     cmd_.mask[s] = g.active();
@@ -68,6 +91,7 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
   for (auto& [c, h] : commands) {
     const bool own = sent_by(h, comm::kCentralParticipantId);
     if (!admit(check(c, lim, k), own, c.tick(), k, "central command", 0, 0)) continue;
+    if (!once(once_central_.see(c, k), "central command", 0, 0, k)) continue;
     ++taken_[2];
     membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));
     for (int s = 0; s < 2; ++s) {
@@ -96,6 +120,7 @@ bool PlantLoop::collect() {
     // Membership first, then the samples.
     apply_launcher_events();
     apply_liveliness();
+    take_controls();  // between gates a control sample has nothing to do: checked and counted only
     take_replies(k, lim);
     log_membership();
     take_groups(k, lim);
@@ -182,6 +207,8 @@ int PlantLoop::report(bool stopped) {
   in.live_agents[1] = e.live_agents[1];
   in.rejected_samples = own_rejects();
   in.rejected_by_process = rejects_by_process();
+  in.rejected_by_kind = kinds_;
+  in.rejected_by_kind["undecodable"] = own_rejects() - rejected_;
   in.late_samples = late_;
   in.missed_deadlines = missed_deadlines_;
   in.loop_scheduling = scheduling_;

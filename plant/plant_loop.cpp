@@ -4,6 +4,7 @@
 #include "comm/lockstep.hpp"
 #include "comm/tick_filter.hpp"
 #include "config/scenario.hpp"
+#include "idl/rules.hpp"
 #include "plant/discovery_wait.hpp"
 
 #include <algorithm>
@@ -79,6 +80,7 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
   for (int s = 0; s < 2; ++s) {
     cmd_.applied[s].assign(per_side_, sim::AgentApplied{});
     agent_rejects_[s].assign(per_side_, 0);
+    once_reply_[s].resize(static_cast<std::size_t>(per_side_));
     cmd_.mask[s].assign(per_side_, 0);
   }
 }
@@ -120,13 +122,8 @@ bool PlantLoop::discover() {
       log_.info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,
                 std::chrono::duration<double>(Clock::now() - t_launch).count());
     }
-    for (auto& [c, h] : controls_.drain()) {
-      if (!sent_by(h, comm::kLauncherParticipantId)) {
-        ++rejected_;
-        continue;
-      }
+    for (const auto& c : take_controls())
       if (c.command() == msg::CONTROL_START) started = true;
-    }
   }
   return started;
 }
@@ -168,13 +165,8 @@ void PlantLoop::wait_gate(long long k) {
   gate_.hold(static_cast<uint64_t>(k));
   const double t0 = now_s();
   while (!stop_.load() && !gate_.released(membership_.launcher_seq())) {
-    for (auto& [c, h] : controls_.drain()) {
-      if (!sent_by(h, comm::kLauncherParticipantId)) {
-        ++rejected_;
-        continue;
-      }
+    for (const auto& c : take_controls())
       if (c.command() == msg::CONTROL_GATE_OPEN) gate_.on_open(c.tick(), c.member_seq());
-    }
     apply_launcher_events();
     if (gate_.timed_out(now_s() - t0)) {
       log_.error("the launcher did not answer the fault gate of tick {} within {} s: going on", k,
@@ -293,15 +285,48 @@ std::map<std::string, uint64_t> PlantLoop::rejects_by_process() const {
 }
 
 void PlantLoop::apply_launcher_events() {
+  const SampleLimits lim = limits();
   for (auto& [e, h] : members_.drain()) {
+    const std::string name = e.name().substr(0, 64);
     if (!sent_by(h, comm::kLauncherParticipantId)) {
-      ++rejected_;
-      log_.warn("rejected a membership event for {} that the launcher did not send", e.name());
+      if (reject("forged") <= kRejectsLogged)
+        log_.warn("rejected a membership event for {} that the launcher did not send", name);
       continue;
     }
-    membership_.on_launcher(e.seq(), launcher_event(e.kind()), e.name());
+    // A malformed event, or one whose fields do not describe the process it names, is not
+    // applied and does not move the launcher's sequence (a later gate waits for the real one).
+    const bool ok = valid(e, lim);
+    if (!ok || !membership_.on_launcher(e.seq(), launcher_event(e.kind()), name)) {
+      if (reject(ok ? "stale" : "malformed") <= kRejectsLogged)
+        log_.warn(
+            "rejected a {} membership event from the launcher's id: seq {} (last applied {}), name '{}', "
+            "kind {}",
+            ok ? "stale" : "malformed", e.seq(), membership_.launcher_seq(), name,
+            static_cast<int>(e.kind()));
+    }
   }
   log_membership();
+}
+
+std::vector<msg::Control> PlantLoop::take_controls() {
+  // Drained at every tick, not only during discovery and at gates: what does not come from the
+  // launcher, or is malformed, is counted whenever it arrives.
+  std::vector<msg::Control> out;
+  for (auto& [c, h] : controls_.drain()) {
+    if (!sent_by(h, comm::kLauncherParticipantId)) {
+      if (reject("forged") <= kRejectsLogged)
+        log_.warn("rejected a control sample the launcher did not send");
+      continue;
+    }
+    if (!msg::well_formed(c)) {
+      if (reject("malformed") <= kRejectsLogged)
+        log_.warn("rejected a malformed control sample from the launcher's id (command {}, seq {})",
+                  static_cast<int>(c.command()), c.seq());
+      continue;
+    }
+    out.push_back(c);
+  }
+  return out;
 }
 
 void PlantLoop::apply_liveliness() {
@@ -322,6 +347,8 @@ SampleLimits PlantLoop::limits() const {
   l.voltage_tolerance_V = c_.voltage_tolerance_V;
   l.ref_bound_radps = c_.central_ref_bound_radps;
   l.bidirectional = sc_.robot.driver.bidirectional;
+  l.v_bound_mps = c_.central_v_bound_mps;
+  l.w_bound_radps = c_.central_w_bound_radps;
   return l;
 }
 

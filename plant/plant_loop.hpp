@@ -161,6 +161,18 @@ class PlantLoop {
   /// not from its own sender counted as rejected; the first kRejectsLogged of each are logged.
   bool admit(Verdict v, bool own, unsigned long long tick, long long k, const char* what, int side, int index);
   uint64_t taken_[3] = {0, 0, 0};     ///< answers used: agents', groups', central's
+  /// Whether an admitted answer is its writer's first for tick k (OncePerTick); a conflicting
+  /// one is counted and logged.
+  bool once(Once o, const char* what, int side, int index, long long k);
+  /// Counts a dropped sample of `kind` (malformed, forged, stale, conflicting, ...); returns
+  /// how many the plant has dropped.
+  uint64_t reject(const char* kind);
+  /// Control samples: taken only from the launcher and well-formed; the others counted.
+  std::vector<msg::Control> take_controls();
+  std::map<std::string, uint64_t> kinds_;  ///< dropped samples by kind (plant.json rejected_by_kind)
+  std::vector<OncePerTick<msg::AgentReply>> once_reply_[2];
+  OncePerTick<msg::GroupStatus> once_group_[2];
+  OncePerTick<msg::CentralCommand> once_central_;
   uint64_t repairs_ = 0;              ///< ticks sent again because answers were missing
   double barrier_average_s_ = 0.0;    ///< typical barrier time (exponential average), s
   /// What each follower last said it dropped (its `rejected` field).

@@ -107,6 +107,7 @@ nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
   j["rms_speed_error_pct"] = core.rms_speed_error_pct();
   j["rejected_samples"] = in.rejected_samples;
   j["rejected_by_process"] = in.rejected_by_process;
+  j["rejected_by_kind"] = in.rejected_by_kind;
   j["late_samples"] = in.late_samples;
   j["missed_deadlines"] = in.missed_deadlines;
   j["loop_scheduling"] = in.loop_scheduling;

@@ -66,6 +66,9 @@ struct ReportInputs {
   uint64_t rejected_samples = 0;
   /// Samples each process dropped (the plant's own, and what each follower last reported).
   std::map<std::string, uint64_t> rejected_by_process;
+  /// The plant's own drops by kind (malformed, forged, other_tick, conflicting, stale,
+  /// undecodable) and its late answers (late).
+  std::map<std::string, uint64_t> rejected_by_kind;
   /// Answers from their rightful sender that came after the plant had gone past the next tick:
   /// not used, and not counted among the rejected (which are malformed or forged).
   uint64_t late_samples = 0;

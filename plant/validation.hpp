@@ -1,9 +1,10 @@
 #pragma once
 // Sample validation: pure checks of the samples the plant takes, on the IDL types, free of
-// the node. A sample is malformed when a field is out of its range (side, index, mask
-// length, a count above a side's agents), not finite, or physically impossible (a voltage outside [0, battery
-// + tolerance], a wheel-speed reference beyond its bound); a well-formed sample still counts only for the
-// tick it answers.
+// the node. A sample is malformed when it breaks the rule of its type (idl/rules.hpp: a field
+// out of its range, not finite, a mask of the wrong length, a count above a side's agents) or
+// is physically impossible now (a voltage above the side's battery + tolerance); a well-formed
+// sample still counts only for the tick it answers, and only once per sender and tick
+// (OncePerTick).
 #include "idl/maptr.h"
 #include "plant/membership.hpp"
 
@@ -16,11 +17,16 @@ struct SampleLimits {
   double voltage_tolerance_V = 1e-9;  ///< allowed excess of an applied voltage over it, V
   double ref_bound_radps = 1e4;       ///< largest |wheel speed reference|, rad/s
   bool bidirectional = false;         ///< the driver applies [-V_B, V_B] (else [0, V_B])
+  double v_bound_mps = 1e2;           ///< largest |body speed reference|, m/s
+  double w_bound_radps = 1e2;         ///< largest |yaw rate reference|, rad/s
 };
 
 bool valid(const msg::AgentReply& r, const SampleLimits& l);
 bool valid(const msg::GroupStatus& g, const SampleLimits& l);
 bool valid(const msg::CentralCommand& c, const SampleLimits& l);
+/// A membership event: the rule of its type, and its node kind, side and index are those of
+/// the process it names (an agent's from its name, a group's side, central, the plant).
+bool valid(const msg::MembershipEvent& e, const SampleLimits& l);
 
 /// What a MembershipEvent says, for the DDS-free membership (kOther: a value this build does
 /// not know).
@@ -39,6 +45,32 @@ Verdict check(const Sample& s, const SampleLimits& l, long long k) {
   if (static_cast<long long>(s.tick()) != k) return Verdict::kOtherTick;
   return Verdict::kAccepted;
 }
+
+/// At most one answer per sender and tick (one OncePerTick per agent, group and central): the
+/// first admitted one is used; a copy (a follower answers a resent tick again with the same
+/// sample; its count of rejected samples may have grown) is ignored; a different one for the
+/// same tick is a conflict: not used, and counted. A participant that forged the sender's prefix
+/// is the sender here: keyed on the process, not on the writer.
+enum class Once { kFirst, kCopy, kConflict };
+
+template <class Sample>
+class OncePerTick {
+ public:
+  Once see(const Sample& s, long long k) {
+    if (k != tick_) {
+      tick_ = k;
+      first_ = s;
+      return Once::kFirst;
+    }
+    Sample same = s;
+    same.rejected(first_.rejected());
+    return same == first_ ? Once::kCopy : Once::kConflict;
+  }
+
+ private:
+  long long tick_ = -1;
+  Sample first_;
+};
 
 /// True for a copy of the answer to the previous tick (k - 1) from its own sender: a follower
 /// answers a repeated tick again, and that copy may arrive once tick k is out. Not a reject.

@@ -161,6 +161,7 @@ void spawn(Child& c, const std::string& run_dir, const Environment& env, int par
   }
   if (pid < 0) throw std::runtime_error("cannot start " + c.name + " (clone failed)");
   c.pid = pid;
+  c.participant_id = participant_id;
   c.running = true;
   c.exit_code = -1;
   c.signal = 0;
@@ -177,7 +178,7 @@ std::optional<Exit> reap_one() {
 
 void signal_all(const std::vector<Child>& kids, int sig) {
   for (const auto& c : kids)
-    if (c.running) kill(c.pid, sig);
+    if (c.running && c.pid > 1) kill(c.pid, sig);  // only what the launcher started
 }
 
 void wait_all(const std::vector<Child>& kids, double seconds, const std::function<void()>& reap) {
@@ -192,6 +193,7 @@ void wait_all(const std::vector<Child>& kids, double seconds, const std::functio
 }
 
 void stop_process(pid_t pid, double term_s) {
+  if (pid <= 1) return;  // never kill(-1, ...) or kill(0, ...): every process, or the launcher's group
   kill(pid, SIGTERM);
   const auto t0 = Clock::now();
   while (waitpid(pid, nullptr, WNOHANG) != pid) {

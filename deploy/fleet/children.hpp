@@ -33,9 +33,11 @@ struct Child {
   int exit_code = -1, signal = 0;
   long max_rss_kB = 0;
   int starts = 0;
-  int base_id = 0;              ///< DDS participant id of its first start
-  bool awaiting_ready = false;  ///< restarted: MEMBER_STARTED goes out once it reports ready
-  int host = -1;                ///< fleet on several hosts: the host it runs on (-1: this machine)
+  int discovery_deaths = 0;         ///< ends during discovery that were answered by a new start
+  int base_id = 0;                  ///< DDS participant id of its first start
+  int participant_id = -1;          ///< DDS participant id of its current start (external: base_id)
+  bool awaiting_ready = false;      ///< restarted: MEMBER_STARTED goes out once it reports ready
+  int host = -1;                    ///< fleet on several hosts: the host it runs on (-1: this machine)
   std::vector<std::string> prefix;  ///< command prefix that starts it on its host ("": directly)
   std::map<std::string, std::string> host_env;  ///< environment its host adds (MAPTR_INTERFACE)
 };

@@ -24,6 +24,10 @@ struct FleetConfig {
   /// secure_discovery_factor times the plain timeout.
   double secure_rematch_s = 12.0;
   double secure_discovery_factor = 2.0;
+  /// A process that ends during discovery (e.g. Fast DDS's assertion in
+  /// StatelessWriter::matched_reader_add under DDS Security on a loaded machine) is started
+  /// again, as one that never gets ready is, at most this many times; then the run aborts.
+  int discovery_death_restarts = 2;
   /// ... on a plain domain: max(rematch_min_s, one lease).
   double rematch_min_s = 20.0;
   /// The next wave starts when the previous one is ready, or after this wall time, s.

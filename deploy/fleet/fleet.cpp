@@ -137,6 +137,7 @@ void Fleet::make_children() {
     c.index = index;
     c.base_id = comm::base_participant_id(name, sc_.robot.agents);
     c.external = std::find(o_.external.begin(), o_.external.end(), name) != o_.external.end();
+    if (c.external) c.participant_id = c.base_id;  // the command it is printed with
     if (!std::filesystem::exists(c.binary)) throw std::runtime_error("missing process binary " + c.binary);
     kids_.push_back(c);
   };
@@ -355,15 +356,6 @@ void Fleet::start_processes() {
                  kids_.size(), sc_.robot.agents);
 }
 
-void Fleet::take_ready() {
-  for (auto& [r, h] : ready_.drain()) {
-    if (!r.ready()) continue;
-    ready_names_.insert(r.name());
-    for (auto& c : kids_)
-      if (c.external && c.name == r.name()) c.pid = static_cast<pid_t>(r.pid());
-  }
-}
-
 std::string Fleet::not_ready() const {
   std::string missing;
   for (const auto& c : kids_)
@@ -424,9 +416,10 @@ bool Fleet::discover() {
       log_.info("launched agents up to {} of {}", r.end - kControllers, kids_.size() - kControllers);
     }
     if (since(last_progress_) > cfg_.rematch_s(sc_.robot.agents, secure())) rematch_unready();
-    const Child* dead = nullptr;
+    Child* dead = nullptr;
     for (std::size_t i = 0; i < waves_->started() && !dead; ++i)
       if (!kids_[i].running && !kids_[i].external) dead = &kids_[i];
+    if (dead && restart_dead(*dead)) dead = nullptr, last_progress_ = Clock::now();
     if (dead || interrupted().load() || since(t_launch_) > timeout) {
       rec_.status = interrupted().load()
                         ? "aborted: interrupted during discovery"
@@ -437,6 +430,7 @@ bool Fleet::discover() {
     }
   }
   rec_.discovery_s = since(t_launch_);
+  discovered_ = true;
   return rec_.status == "ok";
 }
 
@@ -484,8 +478,13 @@ nlohmann::json Fleet::summary() {
   for (const auto& ds : ds_) rec_.discovery_restarts += ds->restarts();
   rec_.last_tick = clock_.state();
   rec_.failures = schedule_.records();
-  rec_.launcher_rejected = clock_.rejected() + static_cast<long>(ready_.undecodable() + ticks_.undecodable() +
-                                                                 gates_.undecodable());
+  auto& kinds = rec_.launcher_by_kind;  // holds the malformed fault gates counted during the run
+  for (const auto& [kind, n] : rec_.ready_rejected) kinds[kind] += n;
+  kinds["forged"] += clock_.rejected();  // ticks and gates not from the plant (malformed ones too)
+  kinds["undecodable"] =
+      static_cast<long>(ready_.undecodable() + ticks_.undecodable() + gates_.undecodable());
+  rec_.launcher_rejected = 0;
+  for (const auto& [kind, n] : kinds) rec_.launcher_rejected += n;
   const nlohmann::json s = build_summary(sc_, MAPTR_SOURCE_DIR, rec_, o_.run_dir, kids_);
   std::ofstream(o_.run_dir + "/summary.json") << s.dump(2) << "\n";
   log_.info("run ended: {}", s.value("status", ""));

@@ -22,6 +22,7 @@
 #include "deploy/fleet/hosts.hpp"
 #include "deploy/fleet/launcher.hpp"
 #include "deploy/fleet/plant_clock.hpp"
+#include "deploy/fleet/ready_check.hpp"
 #include "deploy/fleet/stall_watch.hpp"
 #include "deploy/fleet/summary.hpp"
 #include "deploy/fleet/waves.hpp"
@@ -64,6 +65,9 @@ class Fleet {
   void stop_recorder();
   void make_secure_domain();
   void rematch_unready();
+  /// A process that ended during discovery is started again (fleet_ready.cpp), up to
+  /// discovery_death_restarts times; false when it may not be.
+  bool restart_dead(Child& c);
   /// Ends `c` (SIGTERM, then SIGKILL) and starts it again with its next participant id; writes
   /// fleet.json. Returns the pid it had.
   pid_t start_again(Child& c);
@@ -77,8 +81,14 @@ class Fleet {
   void follow_plant(int participant_id);
   void spawn_wave(LaunchWaves::Range r);
   void print_external_commands() const;
+  // Readiness (fleet_ready.cpp): only from the participant expected for each process.
   void take_ready();
   void announce_restarted();
+  /// The processes whose NodeReady samples since the last call are believed (ready() true);
+  /// the others are rejected, counted in rec_.ready_rejected and logged (the first 20).
+  std::vector<Child*> believed_ready();
+  ReadyClaim claim_of(const msg::NodeReady& r, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+                      Child*& c);
   void reap(bool expected);
   void on_exit(const Exit& e, bool expected);
   void publish_member(const Child& c, msg::MemberEvent kind);
@@ -133,7 +143,8 @@ class Fleet {
   Clock::time_point t_launch_, t_run_, last_wave_, last_print_, last_progress_;
   uint64_t seen_ = 0, member_seq_ = 0, control_seq_ = 1;
   bool plant_done_ = false;
-  bool ds_paused_ = false;  ///< the discovery server is stopped by a pause fault
+  bool discovered_ = false;  ///< discover() has returned: deaths are announced from now on
+  bool ds_paused_ = false;   ///< the discovery server is stopped by a pause fault
   long reported_rejected_ = 0;
 };
 

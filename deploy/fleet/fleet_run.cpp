@@ -4,6 +4,7 @@
 
 #include "comm/side.hpp"
 #include "deploy/fleet/fleet.hpp"
+#include "idl/rules.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -80,21 +81,12 @@ void Fleet::on_exit(const Exit& e, bool expected) {
   record_exit(*c, e);
   if (c == &kids_.front()) plant_done_ = true;
   // A clean exit is a process that saw the plant's last tick; anything else is a failure.
-  if (!expected && !ended_cleanly(*c) && c != &kids_.front()) {
+  // During discovery the plant waits for nobody yet: a process that ends then is started again
+  // (restart_dead) or the run aborts, and no death is announced.
+  if (!expected && !ended_cleanly(*c) && c != &kids_.front() && discovered_) {
     publish_member(*c, msg::MEMBER_DIED);
     log_.warn("{} (pid {}) died: exit {} signal {}", c->name, e.pid, c->exit_code, c->signal);
   }
-}
-
-void Fleet::announce_restarted() {
-  // Restarted processes report ready: the plant may wait for them from now on.
-  for (auto& [r, h] : ready_.drain())
-    for (auto& c : kids_)
-      if (c.awaiting_ready && r.ready() && static_cast<pid_t>(r.pid()) == c.pid) {
-        c.awaiting_ready = false;
-        publish_member(c, msg::MEMBER_STARTED);
-        log_.info("{} (pid {}) restarted and ready", c.name, c.pid);
-      }
 }
 
 void Fleet::apply_fault(const config::FaultSpec& f, double at_s, const std::string& origin) {
@@ -259,6 +251,12 @@ void Fleet::run() {
     for (auto& [g, h] : gates_.drain()) {
       learn_secure_plant(h);
       if (!clock_.from_plant(writer_prefix(h))) continue;
+      if (!msg::well_formed(g)) {  // the rule beside the IDL type (idl/rules.hpp)
+        ++rec_.launcher_by_kind["malformed"];
+        log_.warn("rejected a malformed fault gate from the plant's participant (tick {}, t {})", g.tick(),
+                  g.t());
+        continue;
+      }
       clock_.on_gate(g.t());
       ++gates_seen_;
       open_gate(g);

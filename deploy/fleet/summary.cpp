@@ -161,6 +161,13 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   nlohmann::json rejected = plant.value("rejected_by_process", nlohmann::json::object());
   rejected["launcher"] = r.launcher_rejected;
   s["rejected_samples"] = rejected;
+  // The launcher's readiness: forged NodeReady samples, and stale ones from a process's earlier start.
+  nlohmann::json ready = {{"forged", 0}, {"stale", 0}, {"malformed", 0}};
+  for (const auto& [kind, n] : r.ready_rejected) ready[kind] = n;
+  s["rejected_ready"] = ready;
+  // By kind, for the processes that count their own by kind (the plant and the launcher).
+  s["rejected_by_kind"] = {{"plant", plant.value("rejected_by_kind", nlohmann::json::object())},
+                           {"launcher", r.launcher_by_kind}};
   s["level2"] = level2_stats(run_dir);
   s["processes"] = processes_json(kids);
   if (!r.hosts.is_null()) s["hosts"] = r.hosts;

@@ -28,7 +28,12 @@ struct RunRecord {
   PlantState last_tick;                               ///< the plant's last tick the launcher saw
   nlohmann::json failures = nlohmann::json::array();  ///< the fault records
   long launcher_rejected = 0;  ///< ticks and fault gates the launcher dropped (not from the plant)
-  nlohmann::json hosts;        ///< a fleet on several hosts: its hosts (else null)
+  /// NodeReady samples the launcher did not believe, by kind ("forged", "stale"); counted in
+  /// launcher_rejected too.
+  std::map<std::string, long> ready_rejected;
+  /// Every sample the launcher dropped, by kind (forged, stale, malformed, undecodable).
+  std::map<std::string, long> launcher_by_kind;
+  nlohmann::json hosts;  ///< a fleet on several hosts: its hosts (else null)
   /// Messages run.mcap recorded per topic (empty without a recording).
   std::map<std::string, uint64_t> recorded;
 };

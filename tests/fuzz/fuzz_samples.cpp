@@ -89,9 +89,13 @@ void central(const std::uint8_t* d, std::size_t n) {
 void membership(const std::uint8_t* d, std::size_t n) {
   msg::MembershipEvent e;
   if (!decode<msg::MembershipEventPubSubType>(d, n, e)) return;
+  // The plant applies an event only when it is well-formed and describes the process it names.
+  if (!plant::valid(e, limits())) return;
   plant::Membership m(kPerSide, [] { return 0.0; });
-  m.on_launcher(e.seq(), plant::launcher_event(e.kind()), e.name());
+  require(m.on_launcher(e.seq(), plant::launcher_event(e.kind()), e.name()));
   require(m.launcher_seq() == e.seq());
+  // The same number again is no news, and moves nothing.
+  require(!m.on_launcher(e.seq(), plant::launcher_event(e.kind()), e.name()));
   if (const auto id = m.find(e.name()))
     require(plant::member_name(*id) == e.name() || id->role == plant::Role::kAgent);
 }

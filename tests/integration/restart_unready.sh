@@ -13,6 +13,7 @@ out="$dir/run"
 domain=$((100 + $$ % 120))
 timeout 280 "$bin/maptr" run "$src/deploy/scenarios/soak.yaml" --duration 20 --kill L1@5 --pause discovery@6 \
   --restart L1@8 --resume discovery@10 --out "$out" --domain "$domain" --quiet > "$dir/run.log" 2>&1
+code=$?
 fail() {
   echo "restart_unready: $*"
   cat "$dir/run.log"
@@ -20,7 +21,9 @@ fail() {
   rm -rf "$dir"
   exit 1
 }
-status=$(jq -r .status "$out/summary.json" 2>/dev/null)
+# The launcher's exit first: a run that failed may have no summary to read.
+[ "$code" -eq 0 ] || fail "maptr run exited $code"
+status=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["status"])' "$out/summary.json" 2>/dev/null)
 case "$status" in
   ok | "degraded: "*) ;;
   *) fail "status '$status'" ;;

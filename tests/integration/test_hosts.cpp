@@ -17,6 +17,47 @@ namespace {
 
 constexpr const char* kNeedsRoot = "a fleet on several hosts makes network namespaces and needs root";
 
+/// Why this machine cannot hold a fleet on several hosts ("" when it can): the launcher needs
+/// root, network namespaces it can enter (`ip netns add` and `exec`; not in a chroot without
+/// /run or /sys of its own) and a bridge with veth pairs. Everything it makes is removed.
+std::string hosts_problem() {
+  if (geteuid() != 0) return kNeedsRoot;
+  const std::string tag = std::to_string(getpid());
+  const std::string ns = "maptr-probe-" + tag, br = "mbrp" + tag, veth = "mvp" + tag;
+  auto ok = [](const std::string& cmd) { return std::system((cmd + " > /dev/null 2>&1").c_str()) == 0; };
+  std::string problem;
+  if (!ok("command -v ip"))
+    problem = "no `ip` command (iproute2)";
+  else if (!ok("ip netns add " + ns))
+    problem = "`ip netns add` fails here (no network namespaces, e.g. in a chroot)";
+  else if (!ok("ip netns exec " + ns + " ip link set lo up"))
+    problem = "`ip netns exec` fails here (e.g. a chroot without its own /run and /sys)";
+  else if (!ok("ip link add " + br + " type bridge") ||
+           !ok("ip link add " + veth + " type veth peer name " + veth + "p netns " + ns))
+    problem = "cannot make a bridge and a veth pair into a namespace here";
+  ok("ip link delete " + veth);
+  ok("ip link delete " + br);
+  ok("ip netns delete " + ns);
+  return problem.empty() ? "" : "a fleet on several hosts needs network namespaces: " + problem;
+}
+
+/// hosts_problem(), asked once per test program.
+const std::string& hosts_problem_once() {
+  static const std::string p = hosts_problem();
+  return p;
+}
+
+/// `j` at `path` as text, "(none)" when any key on the way is missing (a failed run may have
+/// written no summary: a message must never throw).
+std::string at(const nlohmann::json& j, std::initializer_list<const char*> path) {
+  const nlohmann::json* v = &j;
+  for (const char* k : path) {
+    if (!v->is_object() || !v->contains(k)) return "(none)";
+    v = &(*v)[k];
+  }
+  return v->dump();
+}
+
 /// True while anything of the run whose launcher had this pid is left: a namespace, its lock,
 /// its bridge.
 bool network_left(pid_t launcher) {
@@ -74,7 +115,7 @@ std::vector<std::string> on_host(const nlohmann::json& s, const std::string& hos
 class Hosts : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (geteuid() != 0) GTEST_SKIP() << kNeedsRoot;
+    if (const auto& p = hosts_problem_once(); !p.empty()) GTEST_SKIP() << p;
   }
 };
 
@@ -106,9 +147,10 @@ TEST_F(Hosts, KillingAHostWithAgentsOfBothSidesKeepsTheRobotGoing) {
   const auto r =
       // The agents that drive at 20 s (L6, L7, R6, R7 in this deterministic run) are put on h2,
       // beside those the default placement puts there: its loss takes drivers of both sides.
-      run_hosts(run_args(out, {"--agents", "16", "--duration", "40", "--hosts", "3", "--kill-host", "h2@20",
-                               "--place", "L6=h2", "--place", "L7=h2", "--place", "R6=h2", "--place", "R7=h2"}),
-                out, 600, pid);
+      run_hosts(
+          run_args(out, {"--agents", "16", "--duration", "40", "--hosts", "3", "--kill-host", "h2@20",
+                         "--place", "L6=h2", "--place", "L7=h2", "--place", "R6=h2", "--place", "R7=h2"}),
+          out, 600, pid);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto& s = r.summary;
   EXPECT_EQ(s["status"], "ok");
@@ -154,8 +196,9 @@ TEST_F(Hosts, PartitionedHostRejoinsAfterTheHeal) {
                                           "h2@10", "--heal", "h2@20"}),
                            out, 600, pid);
   // On failure: who left and came back when, and every process's end.
-  ASSERT_EQ(r.exit_code, 0) << r.output << "\nmembership events: " << r.summary["plant"]["membership_events"].dump()
-                            << "\nprocesses: " << r.summary["processes"].dump();
+  ASSERT_EQ(r.exit_code, 0) << r.output
+                            << "\nmembership events: " << at(r.summary, {"plant", "membership_events"})
+                            << "\nprocesses: " << at(r.summary, {"processes"});
   const auto& s = r.summary;
   EXPECT_EQ(s["status"], "ok");
   for (const auto& name : on_host(s, "h2")) EXPECT_TRUE(rejoined(s, name)) << name << " did not rejoin";
@@ -179,7 +222,8 @@ TEST_F(Hosts, APartitionOfAboutOneLeaseCostsNoProcessOfTheOtherHosts) {
   const auto r = run_hosts(run_args(out, {"--agents", "8", "--duration", "10", "--hosts", "3", "--realtime",
                                           "--partition", "h2@5", "--heal", "h2@6.8"}),
                            out, 600, pid);
-  ASSERT_EQ(r.exit_code, 0) << r.output << "\nmembership events: " << r.summary["plant"]["membership_events"].dump();
+  ASSERT_EQ(r.exit_code, 0) << r.output
+                            << "\nmembership events: " << at(r.summary, {"plant", "membership_events"});
   const auto& s = r.summary;
   EXPECT_EQ(s["status"], "ok");
   EXPECT_DOUBLE_EQ(read_json(out + "/fleet.json")["lease_s"].get<double>(), 2.0) << "the cut is sized to it";
@@ -188,7 +232,8 @@ TEST_F(Hosts, APartitionOfAboutOneLeaseCostsNoProcessOfTheOtherHosts) {
   for (const auto& name : cut) EXPECT_TRUE(rejoined(s, name)) << name << " did not rejoin";
   for (const auto& e : s["plant"]["membership_events"]) {
     const std::string name = e["name"];
-    EXPECT_NE(std::find(cut.begin(), cut.end(), name), cut.end()) << "a process off the cut host: " << e.dump();
+    EXPECT_NE(std::find(cut.begin(), cut.end(), name), cut.end())
+        << "a process off the cut host: " << e.dump();
   }
 }
 
@@ -233,7 +278,7 @@ TEST_F(Hosts, NothingIsLeftAfterTheLauncherIsKilled) {
   if (network_left(pid)) remove_network(pid);
 }
 
-TEST_F(Hosts, WithoutRootHostsExitTwoAndSayWhy) {
+TEST(HostsWithoutRoot, ExitTwoAndSayWhy) {
   TempDir tmp;
   const passwd* nobody = getpwnam("nobody");
   if (!nobody) GTEST_SKIP() << "no user 'nobody' to run without root";

@@ -44,7 +44,7 @@ TEST(Faults, ForgedTicksAndGatesMoveNeitherTheLaunchersClockNorItsFaults) {
   // A command acts at the launcher's current simulated time.
   { std::ofstream(out + "/control") << "kill L1\n"; }
   EXPECT_EQ(wait_child(forger, 30), 0);
-  EXPECT_EQ(wait_child(launcher, 240), 0);
+  ASSERT_EQ(wait_child(launcher, 240), 0);
   const auto s = read_json(out + "/summary.json");
   ASSERT_EQ(s["failures"].size(), 2u) << s["failures"].dump();
   for (const auto& f : s["failures"]) {

@@ -4,14 +4,21 @@
 // `ok` with the trace of the same run without the rogue, and every reject must be counted in
 // summary.json.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
+#include <csignal>
+#include <fstream>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <thread>
 
 #include "comm/dds.hpp"
+#include "comm/fleet_ids.hpp"
+#include "comm/raw_type.hpp"
+#include "comm/shm_files.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "tests/integration/fleet_runner.hpp"
 
@@ -155,6 +162,7 @@ TEST(Rogue, EveryBadSampleIsRejectedCountedAndTheTraceIsUnchanged) {
   TempDir tmp;
   const std::string ref = tmp.path() + "/reference";
   auto r0 = run_cli(run_args(ref, kScenario), ref, 300);
+  ASSERT_EQ(r0.exit_code, 0) << r0.output;
   ASSERT_EQ(r0.summary["status"], "ok") << r0.output;
 
   const std::string out = tmp.path() + "/attacked";
@@ -189,4 +197,234 @@ TEST(Rogue, EveryBadSampleIsRejectedCountedAndTheTraceIsUnchanged) {
   EXPECT_GT(rejected.value("L0", 0), 0);
 }
 
+/// Participants that carry the rightful ids of group-L and central (the fleet's GUID prefix with
+/// their base ids in the highest free id window: on a plain domain anyone can forge them), and
+/// send what a faulty group or central could: malformed statuses and commands. Plus a raw
+/// writer on the topics only the plant and the launcher read, with payloads nobody can decode.
+class RightfulForger {
+ public:
+  explicit RightfulForger(const nlohmann::json& fleet) {
+    const int agents = 16, stride = comm::fleet_stride(agents);
+    const int top = (comm::rtps_max_participant_id(fleet["domain"].get<int>()) / stride - 1) * stride;
+    auto options = [&](int base) {
+      comm::DdsOptions o;
+      o.domain = fleet["domain"];
+      o.discovery_server = fleet["discovery_server"];
+      o.lease_s = fleet["lease_s"];
+      o.fleet_id = fleet["fleet_id"];
+      o.participant_id = base < 0 ? -1 : top + base;
+      return o;
+    };
+    group_p_ = std::make_unique<comm::Participant>("group-L", options(comm::group_participant_id(0)));
+    group_ = group_p_->writer(group_p_->topic<msg::GroupStatusPubSubType>(comm::topic::kGroup),
+                              comm::Profile::kStream, &m_[0]);
+    group_p_->reader(group_p_->topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream,
+                     &ticks_);
+    central_p_ = std::make_unique<comm::Participant>("central", options(comm::kCentralParticipantId));
+    central_ = central_p_->writer(central_p_->topic<msg::CentralCommandPubSubType>(comm::topic::kCentral),
+                                  comm::Profile::kStream, &m_[1]);
+    raw_p_ = std::make_unique<comm::Participant>("rogue-raw", options(-1));
+    for (const auto& t : comm::fleet_topics())
+      if (t.topic == comm::topic::kControl || t.topic == comm::topic::kMembership ||
+          t.topic == comm::topic::kGate || t.topic == comm::topic::kReady)
+        raw_[t.topic] = raw_p_->writer(raw_p_->topic(t.topic, new comm::RawType(t.type_name, t.max_size)),
+                                       t.profile, &m_[2 + raw_.size()]);
+  }
+  bool joined(msg::PlantTick& now, double timeout_s) {
+    return wait_for(
+        [&] {
+          for (auto& m : m_)
+            if (m.matched() < 1) return false;
+          for (auto& [t, h] : ticks_.drain()) now = t;
+          return now.tick() > 0;
+        },
+        timeout_s);
+  }
+  /// Malformed answers to tick `now`, under the rightful ids; returns how many were written.
+  int malformed(const msg::PlantTick& now) {
+    const std::size_t n = now.sides()[0].active().size();
+    int written = 0;
+    auto status = [&] {
+      msg::GroupStatus g;
+      g.tick(now.tick());
+      g.side(msg::SIDE_L);
+      g.active(std::vector<uint8_t>(n, 1));
+      g.live(std::vector<uint8_t>(n, 1));
+      g.wear_m(std::vector<double>(n, 0.0));  // would be a ledger going backwards
+      return g;
+    };
+    auto g = status();
+    g.wear_m()[0] = kNaN;
+    written += group_->write(&g);
+    g = status();
+    g.live(std::vector<uint8_t>(n + 1, 1));
+    written += group_->write(&g);
+    g = status();
+    g.n_active(static_cast<uint16_t>(n + 1));
+    written += group_->write(&g);
+    g = status();
+    g.level2_relaxed(kNaN);
+    written += group_->write(&g);
+    msg::CentralCommand c;
+    c.tick(now.tick());
+    c.v_x_ref(kNaN);
+    written += central_->write(&c);
+    c.v_x_ref(0.5);
+    c.w_ref(1e9);
+    written += central_->write(&c);
+    return written;
+  }
+  /// One undecodable sample on each of control, membership, fault gate and readiness.
+  void undecodable() {
+    comm::RawSample s;
+    s.bytes = std::string("\x00\x01\x00\x00\x01", 5);  // too short for any of them
+    for (auto& [topic, w] : raw_) w->write(&s);
+  }
+
+ private:
+  comm::Signal signal_;
+  comm::Inbox<msg::PlantTick> ticks_{signal_};
+  comm::MatchCounter m_[6];
+  std::unique_ptr<comm::Participant> group_p_, central_p_, raw_p_;
+  eprosima::fastdds::dds::DataWriter *group_ = nullptr, *central_ = nullptr;
+  std::map<std::string, eprosima::fastdds::dds::DataWriter*> raw_;
+};
+
+/// A participant that is no process of the fleet and says every process is ready.
+class ReadyForger {
+ public:
+  explicit ReadyForger(const nlohmann::json& fleet) {
+    comm::DdsOptions o;
+    o.domain = fleet["domain"];
+    o.discovery_server = fleet["discovery_server"];
+    o.lease_s = fleet["lease_s"];
+    p_ = std::make_unique<comm::Participant>("ready-forger", o);
+    w_ = p_->writer(p_->topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &m_);
+  }
+  bool matched() const { return m_.matched() > 0; }
+  /// One NodeReady per process of fleet.json, each carrying `pid`, or the process's own pid
+  /// when pid is 0; returns how many were written.
+  int forge(const nlohmann::json& fleet, pid_t pid) {
+    int n = 0;
+    for (const auto& p : fleet["processes"]) {
+      msg::NodeReady r;
+      r.name(p["name"].get<std::string>());
+      r.kind(msg::NODE_AGENT);
+      r.pid(static_cast<uint32_t>(pid != 0 ? pid : p["pid"].get<pid_t>()));
+      r.ready(true);
+      n += w_->write(&r) ? 1 : 0;
+    }
+    return n;
+  }
+
+ private:
+  comm::MatchCounter m_;
+  std::unique_ptr<comm::Participant> p_;
+  eprosima::fastdds::dds::DataWriter* w_ = nullptr;
+};
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 }  // namespace
+
+TEST(Rogue, MalformedAnswersUnderTheRightfulIdsAndUndecodableSamplesAreCounted) {
+  TempDir tmp;
+  const std::string ref = tmp.path() + "/reference";
+  auto r0 = run_cli(run_args(ref, kScenario), ref, 300);
+  ASSERT_EQ(r0.exit_code, 0) << r0.output;
+
+  const std::string out = tmp.path() + "/attacked";
+  const pid_t launcher = start_cli(run_args(out, kScenario), tmp.path() + "/out.log");
+  ASSERT_TRUE(wait_for([&] { return !read_json(out + "/fleet.json").is_null(); }, 60));
+  int malformed = 0;
+  constexpr int kUndecodable = 20;
+  {
+    RightfulForger forger(read_json(out + "/fleet.json"));
+    msg::PlantTick now;
+    ASSERT_TRUE(forger.joined(now, 60)) << "the forger did not join the fleet";
+    for (int i = 0; i < kUndecodable; ++i) {
+      malformed += forger.malformed(now);
+      forger.undecodable();
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      now.tick(now.tick() + 5);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // everything delivered before it leaves
+  }
+  ASSERT_EQ(wait_child(launcher, 300), 0);
+  const auto s = read_json(out + "/summary.json");
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_EQ(s["trace_sha256"], r0.summary["trace_sha256"]) << "malformed answers changed the run";
+  const auto& plant = s["rejected_by_kind"]["plant"];
+  const auto& launcher_kinds = s["rejected_by_kind"]["launcher"];
+  std::cout << "malformed written: " << malformed << ", undecodable written per topic: " << kUndecodable
+            << ", rejected_by_kind: " << s["rejected_by_kind"].dump() << "\n";
+  // Every answer carries a malformed field: whatever its tick, what arrives is malformed (the
+  // lock-step topics are best effort: some may be lost on the way).
+  EXPECT_GT(plant.value("malformed", 0), 0);
+  EXPECT_LE(plant.value("malformed", 0), malformed);
+  // Control and membership are read by the plant alone, gates and readiness by the launcher alone.
+  EXPECT_EQ(plant.value("undecodable", 0), 2 * kUndecodable);
+  EXPECT_EQ(launcher_kinds.value("undecodable", 0), 2 * kUndecodable);
+  // The wear watch never saw the ledgers go backwards.
+  for (const char* side : {"L", "R"})
+    EXPECT_EQ(s["plant"]["group_wear"][side]["regressions"], 0) << s["plant"]["group_wear"].dump();
+}
+
+TEST(Rogue, ForgedReadinessIsRejectedCountedAndSignalsNothing) {
+  // A kill and a restart of L3, paced to the wall clock: the forger says every process is
+  // ready from the first wave on, and keeps saying so (with the current pids of fleet.json,
+  // and with the pid of a bystander process) through L3's restart.
+  const std::vector<std::string> scenario = {"--duration", "14",        "--realtime", "--kill",
+                                             "L3@4",       "--restart", "L3@7"};
+  TempDir tmp;
+  const std::string ref = tmp.path() + "/reference";
+  auto r0 = run_cli(run_args(ref, scenario), ref, 300);
+  ASSERT_EQ(r0.exit_code, 0) << r0.output;
+
+  const pid_t bystander = fork();
+  if (bystander == 0) {
+    execl("/bin/sleep", "sleep", "600", nullptr);
+    _exit(127);
+  }
+  const std::string out = tmp.path() + "/forged";
+  const pid_t launcher = start_cli(run_args(out, scenario), tmp.path() + "/out.log");
+  ASSERT_TRUE(wait_for([&] { return !read_json(out + "/fleet.json").is_null(); }, 60));
+  int written = 0;
+  {
+    ReadyForger forger(read_json(out + "/fleet.json"));
+    ASSERT_TRUE(wait_for([&] { return forger.matched(); }, 60)) << "the forger did not match the launcher";
+    // Until the launcher ends: every 100 ms, once with the real pids, once with the bystander's.
+    while (waitpid(launcher, nullptr, WNOHANG) == 0 && process_running(launcher)) {
+      const auto fleet = read_json(out + "/fleet.json");
+      if (fleet.contains("processes")) written += forger.forge(fleet, 0) + forger.forge(fleet, bystander);
+      if (std::ifstream(out + "/summary.json").good()) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+  ASSERT_EQ(wait_child(launcher, 300), 0) << read_text(tmp.path() + "/out.log");
+  const bool bystander_alive = process_running(bystander);
+  kill(bystander, SIGKILL);
+  waitpid(bystander, nullptr, 0);
+  EXPECT_TRUE(bystander_alive) << "a signal reached a process the launcher did not start";
+  const auto s = read_json(out + "/summary.json");
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_EQ(s["trace_sha256"], r0.summary["trace_sha256"]) << "forged readiness changed the run";
+  std::cout << "forged NodeReady written: " << written << ", rejected_ready: " << s["rejected_ready"].dump()
+            << ", rejected_by_kind: " << s["rejected_by_kind"].dump() << "\n";
+  ASSERT_GE(written, 40);
+  // Every forgery the launcher received is counted (the latched writer delivers each one).
+  EXPECT_GE(s["rejected_ready"]["forged"].get<long>(), 40);
+  EXPECT_LE(s["rejected_ready"]["forged"].get<long>(), written);
+  // The restarted L3 was announced once, after its own NodeReady.
+  const std::string log = read_text(out + "/logs/launcher.log");
+  EXPECT_NE(log.find("rejected a forged NodeReady"), std::string::npos);
+  EXPECT_NE(log.find("L3 (pid"), std::string::npos);
+  const auto started = log.find("restarted and ready");
+  ASSERT_NE(started, std::string::npos) << log;
+  EXPECT_EQ(log.find("restarted and ready", started + 1), std::string::npos) << "announced twice";
+}

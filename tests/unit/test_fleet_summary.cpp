@@ -139,6 +139,28 @@ TEST(FleetSummary, SummaryOfARunFromItsFiles) {
   EXPECT_NE(human.find("oracle differed 1 of 2"), std::string::npos) << human;
 }
 
+TEST(FleetSummary, RejectedSamplesByProcessKindAndReadiness) {
+  const std::string dir = ::testing::TempDir() + "/fleet_summary_rejects";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/plant.json") << R"({"status":"ok","rejected_by_process":{"plant":7,"L0":2},
+      "rejected_by_kind":{"forged":4,"undecodable":3},"membership_events":[]})";
+  maptr::config::Scenario sc;
+  RunRecord r;
+  r.launcher_rejected = 9;
+  r.ready_rejected = {{"forged", 6}};
+  r.launcher_by_kind = {{"forged", 8}, {"undecodable", 1}};
+  const nlohmann::json s = build_summary(sc, "/project", r, dir, {plant_child(0, 0)});
+  EXPECT_EQ(s["rejected_samples"]["plant"], 7);
+  EXPECT_EQ(s["rejected_samples"]["L0"], 2);
+  EXPECT_EQ(s["rejected_samples"]["launcher"], 9);
+  EXPECT_EQ(s["rejected_ready"]["forged"], 6);
+  EXPECT_EQ(s["rejected_ready"]["stale"], 0);  // every kind is there, even at 0
+  EXPECT_EQ(s["rejected_ready"]["malformed"], 0);
+  EXPECT_EQ(s["rejected_by_kind"]["plant"]["undecodable"], 3);
+  EXPECT_EQ(s["rejected_by_kind"]["launcher"]["forged"], 8);
+}
+
 TEST(FleetSummary, ABrokenLevel2LogIsReportedWithoutDecisions) {
   const std::string dir = ::testing::TempDir() + "/fleet_summary_broken_l2";
   std::filesystem::remove_all(dir);

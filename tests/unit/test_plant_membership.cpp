@@ -57,12 +57,24 @@ TEST_F(PlantMembership, LauncherDeathEndsTheWaitAndIsRecordedOnce) {
   EXPECT_DOUBLE_EQ(m.records()[0].wall_ms, 1001.0);
 }
 
-TEST_F(PlantMembership, LauncherEventOfUnknownProcessOnlyCountsItsNumber) {
-  m.on_launcher(7, LauncherEvent::kDied, "discovery");
-  m.on_launcher(8, LauncherEvent::kOther, "L1");
-  EXPECT_EQ(m.launcher_seq(), 8u);
-  EXPECT_TRUE(m.at(kL1).live);
+TEST_F(PlantMembership, LauncherEventAboutThePlantOnlyCountsItsNumber) {
+  EXPECT_TRUE(m.on_launcher(7, LauncherEvent::kPaused, "plant"));
+  EXPECT_EQ(m.launcher_seq(), 7u);
   EXPECT_TRUE(m.records().empty());
+}
+
+TEST_F(PlantMembership, AnUnknownKindOrAnOldNumberIsNotAppliedAndDoesNotMoveTheSequence) {
+  ASSERT_TRUE(m.on_launcher(7, LauncherEvent::kStarted, "L2"));
+  // An unknown kind says nothing: a later gate must still wait for event 8.
+  EXPECT_FALSE(m.on_launcher(8, LauncherEvent::kOther, "L1"));
+  EXPECT_EQ(m.launcher_seq(), 7u);
+  // Not above the last applied: a copy or a forgery, not news.
+  EXPECT_FALSE(m.on_launcher(7, LauncherEvent::kDied, "L1"));
+  EXPECT_FALSE(m.on_launcher(3, LauncherEvent::kDied, "L1"));
+  EXPECT_TRUE(m.at(kL1).live);
+  EXPECT_EQ(m.launcher_seq(), 7u);
+  EXPECT_TRUE(m.on_launcher(8, LauncherEvent::kDied, "L1"));
+  EXPECT_FALSE(m.at(kL1).live);
 }
 
 TEST_F(PlantMembership, LivelinessLossOfTheCurrentWriterKills) {

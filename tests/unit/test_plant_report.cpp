@@ -106,6 +106,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
   in.live_agents[1] = 7;
   in.rejected_samples = 3;
   in.late_samples = 2;
+  in.rejected_by_kind = {{"forged", 2}, {"conflicting", 1}, {"late", 2}};
   in.loop_scheduling = "SCHED_FIFO 1 on CPU 1";
   const std::vector<plant::MembershipRecord> events = {{"L1", "died (launcher)", 5.0, 123.5}};
   const auto j = plant::plant_report(core, in, events);
@@ -134,6 +135,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "rms_speed_error_pct",
                                          "rejected_samples",
                                          "rejected_by_process",
+                                         "rejected_by_kind",
                                          "late_samples",
                                          "missed_deadlines", "loop_scheduling", "tick_repairs",
                                          "tick_timing_us",
@@ -143,6 +145,8 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
   EXPECT_EQ(j["live_agents"]["R"], 7);
   EXPECT_EQ(j["rejected_samples"], 3);
   EXPECT_EQ(j["late_samples"], 2);
+  EXPECT_EQ(j["rejected_by_kind"]["forged"], 2);
+  EXPECT_EQ(j["rejected_by_kind"]["conflicting"], 1);
   EXPECT_EQ(j["loop_scheduling"], "SCHED_FIFO 1 on CPU 1");
   EXPECT_EQ(j["agent_active_s"]["L"].size(), 8u);
   EXPECT_EQ(

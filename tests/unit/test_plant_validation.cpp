@@ -36,6 +36,7 @@ msg::AgentReply reply() {
   r.current_A(0.8);
   r.efficiency(0.6);
   r.state(msg::AGENT_ACTIVE);
+  r.pid(4242);
   return r;
 }
 
@@ -44,6 +45,15 @@ msg::GroupStatus status() {
   g.tick(7);
   g.side(msg::SIDE_L);
   g.active(std::vector<uint8_t>{1, 0, 1, 0});
+  g.live(std::vector<uint8_t>{1, 1, 1, 0});
+  g.wear_m(std::vector<double>{12.5, 0.0, 11.0, 3.0});
+  g.n_active(2);
+  g.n_live(3);
+  g.n_other(4);
+  g.level2_status(msg::L2_OK);
+  g.level2_relaxed(2.4);
+  g.oracle_n_active(2);
+  g.solve_time_ms(1.7);
   return g;
 }
 
@@ -51,7 +61,21 @@ msg::CentralCommand command() {
   msg::CentralCommand c;
   c.tick(7);
   c.phidot_ref({40.0, -40.0});
+  c.v_x_ref(0.8);
+  c.w_ref(-0.2);
   return c;
+}
+
+msg::MembershipEvent event(const std::string& name, msg::NodeKind kind, msg::Side side, uint16_t index) {
+  msg::MembershipEvent e;
+  e.seq(3);
+  e.name(name);
+  e.node_kind(kind);
+  e.side(side);
+  e.index(index);
+  e.kind(msg::MEMBER_DIED);
+  e.wall_s(4.5);
+  return e;
 }
 
 TEST(PlantValidation, WellFormedSamplesPass) {
@@ -126,6 +150,148 @@ TEST(PlantValidation, GroupStatusSideAndMaskLength) {
   EXPECT_FALSE(valid(g, limits()));
   g.active({});
   EXPECT_FALSE(valid(g, limits()));
+}
+
+TEST(PlantValidation, GroupStatusLiveMaskAndLedgerHaveOneEntryPerAgent) {
+  auto g = status();
+  g.live(std::vector<uint8_t>{1, 1, 1});
+  EXPECT_FALSE(valid(g, limits()));
+  g.live(std::vector<uint8_t>{1, 1, 1, 1, 1});
+  EXPECT_FALSE(valid(g, limits()));
+  g = status();
+  g.wear_m(std::vector<double>{1.0, 2.0, 3.0});
+  EXPECT_FALSE(valid(g, limits()));
+  g.wear_m({});
+  EXPECT_FALSE(valid(g, limits()));
+  // A mask entry is 0 or 1.
+  g = status();
+  g.active()[1] = 2;
+  EXPECT_FALSE(valid(g, limits()));
+  g = status();
+  g.live()[0] = 255;
+  EXPECT_FALSE(valid(g, limits()));
+}
+
+TEST(PlantValidation, GroupStatusWearIsAFiniteDistance) {
+  for (double bad : {kNaN, kInf, -kInf, -0.001}) {
+    auto g = status();
+    g.wear_m()[2] = bad;
+    EXPECT_FALSE(valid(g, limits())) << bad;
+  }
+}
+
+TEST(PlantValidation, GroupStatusCountsAboveASideAreMalformed) {
+  auto g = status();
+  g.n_active(4);
+  g.n_live(4);
+  g.n_other(4);
+  EXPECT_TRUE(valid(g, limits()));
+  g.n_active(5);
+  EXPECT_FALSE(valid(g, limits()));
+  g = status();
+  g.n_live(5);
+  EXPECT_FALSE(valid(g, limits()));
+  g = status();
+  g.n_other(65535);
+  EXPECT_FALSE(valid(g, limits()));
+}
+
+TEST(PlantValidation, GroupStatusLevel2Fields) {
+  auto g = status();
+  g.level2_status(static_cast<msg::Level2Status>(msg::L2_SOLVER_FAILED + 1));
+  EXPECT_FALSE(valid(g, limits()));
+  for (double bad : {kNaN, kInf, -0.1, 4.1}) {
+    g = status();
+    g.level2_relaxed(bad);
+    EXPECT_FALSE(valid(g, limits())) << "relaxed " << bad;
+  }
+  for (int16_t bad : {int16_t{-2}, int16_t{5}}) {
+    g = status();
+    g.oracle_n_active(bad);
+    EXPECT_FALSE(valid(g, limits())) << "oracle " << bad;
+  }
+  g = status();
+  g.oracle_n_active(-1);  // not run
+  EXPECT_TRUE(valid(g, limits()));
+  for (double bad : {kNaN, kInf, -1.0}) {
+    g = status();
+    g.solve_time_ms(bad);
+    EXPECT_FALSE(valid(g, limits())) << "solve time " << bad;
+  }
+}
+
+TEST(PlantValidation, CentralSpeedAndYawReferencesFiniteAndBounded) {
+  for (double bad : {kNaN, kInf, -kInf, 1e2, -1e2, 1e9}) {
+    auto c = command();
+    c.v_x_ref(bad);
+    EXPECT_FALSE(valid(c, limits())) << "v_x_ref " << bad;
+    c = command();
+    c.w_ref(bad);
+    EXPECT_FALSE(valid(c, limits())) << "w_ref " << bad;
+  }
+  auto c = command();
+  c.v_x_ref(-99.0);
+  c.w_ref(99.0);
+  EXPECT_TRUE(valid(c, limits()));
+}
+
+TEST(PlantValidation, AnAgentReplyWithoutAPidIsMalformed) {
+  auto r = reply();
+  r.pid(0);
+  EXPECT_FALSE(valid(r, limits()));
+}
+
+TEST(PlantValidation, AMembershipEventDescribesTheProcessItNames) {
+  const auto lim = limits();
+  EXPECT_TRUE(valid(event("L3", msg::NODE_AGENT, msg::SIDE_L, 3), lim));
+  EXPECT_TRUE(valid(event("R0", msg::NODE_AGENT, msg::SIDE_R, 0), lim));
+  EXPECT_TRUE(valid(event("group-R", msg::NODE_GROUP, msg::SIDE_R, 0), lim));
+  EXPECT_TRUE(valid(event("central", msg::NODE_CENTRAL, msg::SIDE_L, 0), lim));
+  EXPECT_TRUE(valid(event("plant", msg::NODE_PLANT, msg::SIDE_L, 0), lim));
+  EXPECT_FALSE(valid(event("L3", msg::NODE_AGENT, msg::SIDE_L, 2), lim));       // another index
+  EXPECT_FALSE(valid(event("L3", msg::NODE_AGENT, msg::SIDE_R, 3), lim));       // another side
+  EXPECT_FALSE(valid(event("L3", msg::NODE_GROUP, msg::SIDE_L, 3), lim));       // another kind
+  EXPECT_FALSE(valid(event("L4", msg::NODE_AGENT, msg::SIDE_L, 4), lim));       // beyond the side
+  EXPECT_FALSE(valid(event("group-L", msg::NODE_GROUP, msg::SIDE_R, 0), lim));  // the other side
+  EXPECT_FALSE(valid(event("nobody", msg::NODE_AGENT, msg::SIDE_L, 0), lim));
+  EXPECT_FALSE(valid(event("", msg::NODE_CENTRAL, msg::SIDE_L, 0), lim));
+  auto e = event("L1", msg::NODE_AGENT, msg::SIDE_L, 1);
+  e.seq(0);
+  EXPECT_FALSE(valid(e, lim));
+  e = event("L1", msg::NODE_AGENT, msg::SIDE_L, 1);
+  e.kind(static_cast<msg::MemberEvent>(msg::MEMBER_RESUMED + 1));
+  EXPECT_FALSE(valid(e, lim));
+  e = event("L1", msg::NODE_AGENT, msg::SIDE_L, 1);
+  e.wall_s(kNaN);
+  EXPECT_FALSE(valid(e, lim));
+  e = event("L1", msg::NODE_AGENT, msg::SIDE_L, 1);
+  e.name(std::string(65, 'L'));
+  EXPECT_FALSE(valid(e, lim));
+}
+
+TEST(PlantValidation, OneAnswerPerSenderAndTick) {
+  plant::OncePerTick<msg::GroupStatus> once;
+  auto g = status();
+  EXPECT_EQ(once.see(g, 7), plant::Once::kFirst);
+  // The same answer again (a resent tick), its count of rejected samples grown: a copy.
+  g.rejected(5);
+  EXPECT_EQ(once.see(g, 7), plant::Once::kCopy);
+  // A different answer for the same tick: a conflict, every time, and the first stays.
+  auto other = status();
+  other.wear_m()[0] = 1.0;  // a ledger going backwards
+  EXPECT_EQ(once.see(other, 7), plant::Once::kConflict);
+  EXPECT_EQ(once.see(other, 7), plant::Once::kConflict);
+  EXPECT_EQ(once.see(status(), 7), plant::Once::kCopy);
+  // The next tick's first answer.
+  EXPECT_EQ(once.see(other, 8), plant::Once::kFirst);
+}
+
+TEST(PlantValidation, OneCentralCommandPerTick) {
+  plant::OncePerTick<msg::CentralCommand> once;
+  EXPECT_EQ(once.see(command(), 7), plant::Once::kFirst);
+  auto absurd = command();
+  absurd.phidot_ref()[0] = 0.0;  // well-formed, but not the command already taken
+  EXPECT_EQ(once.see(absurd, 7), plant::Once::kConflict);
 }
 
 TEST(PlantValidation, CentralReferenceFiniteAndBounded) {

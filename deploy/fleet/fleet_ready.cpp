@@ -1,0 +1,108 @@
+// The launcher's readiness: a NodeReady counts only from the participant the launcher expects
+// for that process (deploy/fleet/ready_check.hpp); forged and stale ones are counted and logged.
+#include <algorithm>
+
+#include "comm/fleet_guid.hpp"
+#include "deploy/fleet/fleet.hpp"
+#include "idl/rules.hpp"
+
+namespace maptr::deploy::fleet {
+
+namespace {
+/// Rejected NodeReady samples logged one by one; the rest only counted.
+constexpr long kLoggedRejects = 20;
+
+std::string prefix_text(const eprosima::fastrtps::rtps::InstanceHandle_t& h) {
+  static const char* hex = "0123456789abcdef";
+  std::string s;
+  for (const auto b : writer_prefix(h)) s += {hex[b >> 4], hex[b & 15]};
+  return s;
+}
+}  // namespace
+
+ReadyClaim Fleet::claim_of(const msg::NodeReady& r, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+                           Child*& c) {
+  ReadyClaim claim;
+  claim.well_formed = msg::well_formed(r);
+  if (!claim.well_formed) return claim;
+  c = find(r.name());
+  if (!c) return claim;
+  claim.known_name = true;
+  claim.external = c->external;
+  const int agents = sc_.robot.agents;
+  if (secure()) {
+    // The prefix names the writer's certificate: the same at every start.
+    claim.from_current_participant = comm::written_by(dds_.fleet_id, agents, writer, c->name);
+  } else {
+    const auto id = comm::fleet_participant(dds_.fleet_id, writer);
+    claim.from_current_participant = id && *id == c->participant_id;
+    claim.from_earlier_participant =
+        id && !claim.from_current_participant && comm::written_by(dds_.fleet_id, agents, writer, c->name);
+  }
+  const auto pid = static_cast<pid_t>(r.pid());
+  claim.pid_matches = c->running && pid == c->pid;
+  // A secure process's earlier start has the same certificate: its old pid tells it apart.
+  if (secure() && !c->external && claim.from_current_participant && !claim.pid_matches)
+    claim.from_earlier_participant = true, claim.from_current_participant = false;
+  if (c->external && claim.from_current_participant) {
+    bool unreadable = false;
+    const auto problem = external_pid_problem(pid, c->binary, dds_.fleet_id, c->participant_id, unreadable);
+    claim.external_pid_ok = !problem || unreadable;
+    if (!problem) {
+      c->pid = pid;  // verified: its executable and its environment are this fleet's
+    } else if (unreadable) {
+      log_.warn("external {}: {}; ready, but the launcher will not take its pid", c->name, *problem);
+    } else {
+      log_.warn("external {}: {}", c->name, *problem);
+    }
+  }
+  return claim;
+}
+
+std::vector<Child*> Fleet::believed_ready() {
+  std::vector<Child*> out;
+  for (auto& [r, h] : ready_.drain()) {
+    Child* c = nullptr;
+    const ReadyVerdict v = judge_ready(claim_of(r, h, c));
+    if (v == ReadyVerdict::kTaken) {
+      if (r.ready() && std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+      continue;
+    }
+    const long n = ++rec_.ready_rejected[verdict_name(v)];
+    if (n <= kLoggedRejects)
+      log_.warn("rejected a {} NodeReady: name '{}', pid {}, writer {}{}", verdict_name(v),
+                r.name().substr(0, 64), r.pid(), prefix_text(h),
+                n == kLoggedRejects ? " (no more of this kind are logged)" : "");
+  }
+  return out;
+}
+
+bool Fleet::restart_dead(Child& c) {
+  if (c.discovery_deaths >= cfg_.discovery_death_restarts) return false;
+  ++c.discovery_deaths;
+  const std::string how = describe_end(c, o_.run_dir);
+  ready_names_.erase(c.name);
+  if (&c == &kids_.front()) plant_done_ = false;  // a plant that ended during discovery starts again too
+  spawn_child(c);
+  write_fleet();
+  rec_.rematched.push_back(c.name);
+  log_.warn("{} ended during discovery ({}); started again (pid {}), as one that never gets ready is", c.name,
+            how, c.pid);
+  return true;
+}
+
+void Fleet::take_ready() {
+  for (Child* c : believed_ready()) ready_names_.insert(c->name);
+}
+
+void Fleet::announce_restarted() {
+  // Restarted processes report ready: the plant may wait for them from now on.
+  for (Child* c : believed_ready()) {
+    if (!c->awaiting_ready) continue;
+    c->awaiting_ready = false;
+    publish_member(*c, msg::MEMBER_STARTED);
+    log_.info("{} (pid {}) restarted and ready", c->name, c->pid);
+  }
+}
+
+}  // namespace maptr::deploy::fleet

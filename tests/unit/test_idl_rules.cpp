@@ -1,0 +1,126 @@
+// The rule of every message beside the IDL (idl/rules.hpp): the fields the plant's and the
+// followers' tests do not already cover (PlantTick, Control, FaultGate, NodeReady).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "idl/rules.hpp"
+
+namespace {
+
+using namespace maptr;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+msg::FleetBounds bounds() {
+  msg::FleetBounds b;
+  b.per_side = 4;
+  return b;
+}
+
+msg::PlantTick tick() {
+  msg::PlantTick t;
+  t.tick(5);
+  t.dt(0.01);
+  t.central_stamp(-1);
+  for (auto& s : t.sides()) {
+    s.battery_V(24.0);
+    s.active(std::vector<uint8_t>{1, 1, 0, 0});
+    s.live(std::vector<uint8_t>(4, 1));
+    s.wake(std::vector<uint8_t>{1, 1, 0, 1});
+    s.n_active(2);
+    s.relay_count(2);
+    s.group_stamp(-1);
+  }
+  return t;
+}
+
+TEST(IdlRules, AWellFormedTickPasses) {
+  EXPECT_TRUE(msg::well_formed(tick(), bounds()));
+  auto t = tick();
+  t.paused(std::vector<uint8_t>(2 * 4 + 3, 0));
+  EXPECT_TRUE(msg::well_formed(t, bounds()));
+}
+
+TEST(IdlRules, TickMasksHaveOneEntryOfZeroOrOnePerAgent) {
+  auto t = tick();
+  t.sides()[0].wake()[2] = 7;
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t = tick();
+  t.sides()[1].live().pop_back();
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t = tick();
+  t.paused(std::vector<uint8_t>(2 * 4 + 2, 0));
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t.paused(std::vector<uint8_t>(2 * 4 + 3, 2));
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+}
+
+TEST(IdlRules, TickNumbersStampsAndStep) {
+  for (double bad : {kNaN, kInf, 0.0, -0.01}) {
+    auto t = tick();
+    t.dt(bad);
+    EXPECT_FALSE(msg::well_formed(t, bounds())) << "dt " << bad;
+  }
+  auto t = tick();
+  t.central_stamp(-2);
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t = tick();
+  t.sides()[0].group_stamp(-5);
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t = tick();
+  t.sides()[1].phidot_ref_prev(kNaN);
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t = tick();
+  t.run_state(static_cast<msg::RunState>(msg::RUN_ABORTED + 1));
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+}
+
+TEST(IdlRules, ControlNeedsAKnownCommandAndANumber) {
+  msg::Control c;
+  c.command(msg::CONTROL_START);
+  c.seq(1);
+  EXPECT_TRUE(msg::well_formed(c));
+  c.seq(0);
+  EXPECT_FALSE(msg::well_formed(c));
+  c.seq(2);
+  c.command(msg::CONTROL_NONE);  // a default sample
+  EXPECT_FALSE(msg::well_formed(c));
+  c.command(static_cast<msg::ControlCommand>(msg::CONTROL_GATE_OPEN + 1));
+  EXPECT_FALSE(msg::well_formed(c));
+}
+
+TEST(IdlRules, FaultGateTimeIsFiniteAndNotNegative) {
+  msg::FaultGate g;
+  g.tick(100);
+  g.t(1.0);
+  EXPECT_TRUE(msg::well_formed(g));
+  for (double bad : {kNaN, kInf, -kInf, -1.0}) {
+    g.t(bad);
+    EXPECT_FALSE(msg::well_formed(g)) << bad;
+  }
+}
+
+TEST(IdlRules, NodeReadyNamesAProcessOfKnownKindWithAPid) {
+  msg::NodeReady r;
+  r.name("L3");
+  r.kind(msg::NODE_AGENT);
+  r.pid(1234);
+  r.ready(true);
+  EXPECT_TRUE(msg::well_formed(r));
+  r.pid(0);
+  EXPECT_FALSE(msg::well_formed(r));
+  r.pid(1234);
+  r.kind(static_cast<msg::NodeKind>(msg::NODE_PLANT + 1));
+  EXPECT_FALSE(msg::well_formed(r));
+  r.kind(msg::NODE_AGENT);
+  r.name("");
+  EXPECT_FALSE(msg::well_formed(r));
+  r.name(std::string(msg::kMaxNameLength + 1, 'x'));
+  EXPECT_FALSE(msg::well_formed(r));
+}
+
+}  // namespace
