@@ -64,27 +64,32 @@ double battery_voltage(const std::string& text) {
 
 }  // namespace
 
+namespace {
+/// The options of the steady-state tables: the scenario, the robot's overrides and the battery.
+CLI::App* robot_table_command(CLI::App& app, const char* name, const char* what, RunArgs& robot,
+                              std::string& battery_V) {
+  auto* c = app.add_subcommand(name, what);
+  c->add_option("scenario", robot.scenario, "scenario YAML (default: deploy/scenarios/default.yaml)");
+  c->add_option("--agents", robot.agents, "number of agents N");
+  c->add_option("--gross-kg", robot.gross_kg, "gross mass, kg");
+  c->add_option("--motor", robot.motor, "motor type I or II");
+  c->add_option("--driver", robot.driver, "unidirectional or bidirectional (default: the scenario's)");
+  c->add_option("--battery-v", battery_V, "battery voltage, V (default: full, 23.4 V)");
+  return c;
+}
+}  // namespace
+
 CLI::App* add_level2_command(CLI::App& app, Level2Args& a) {
-  auto* l2c = app.add_subcommand("level2", "the Level-2 problem of one side in steady cruise, for every N_a");
-  l2c->add_option("scenario", a.robot.scenario, "scenario YAML (default: deploy/scenarios/default.yaml)");
-  l2c->add_option("--agents", a.robot.agents, "number of agents N");
-  l2c->add_option("--gross-kg", a.robot.gross_kg, "gross mass, kg");
-  l2c->add_option("--motor", a.robot.motor, "motor type I or II");
+  auto* l2c = robot_table_command(app, "level2", "the Level-2 problem of one side in steady cruise, for every N_a",
+                                  a.robot, a.battery_V);
   l2c->add_option("--speed", a.robot.speed, "cruise speed, m/s (default: the first segment's)");
-  l2c->add_option("--battery-v", a.battery_V, "battery voltage, V (default: full, 23.4 V)");
-  l2c->add_option("--driver", a.robot.driver, "unidirectional or bidirectional (default: the scenario's)");
   l2c->add_option("--radius", a.radius_m, "a steady turn of this radius, m (> 0 left, < 0 right; default straight)");
   return l2c;
 }
 
 CLI::App* add_reach_command(CLI::App& app, ReachArgs& a) {
-  auto* rc = app.add_subcommand("reach", "the tightest radius the robot holds in a steady turn, against speed");
-  rc->add_option("scenario", a.robot.scenario, "scenario YAML (default: deploy/scenarios/default.yaml)");
-  rc->add_option("--agents", a.robot.agents, "number of agents N");
-  rc->add_option("--gross-kg", a.robot.gross_kg, "gross mass, kg");
-  rc->add_option("--motor", a.robot.motor, "motor type I or II");
-  rc->add_option("--driver", a.robot.driver, "unidirectional or bidirectional (default: the scenario's)");
-  rc->add_option("--battery-v", a.battery_V, "battery voltage, V (default: full, 23.4 V)");
+  auto* rc = robot_table_command(app, "reach", "the tightest radius the robot holds in a steady turn, against speed",
+                                 a.robot, a.battery_V);
   rc->add_option("--max-speed", a.max_speed_mps, "highest speed of the table, m/s (default: the motors' reach)")
       ->check(CLI::Range(0.01, 1000.0));
   return rc;
