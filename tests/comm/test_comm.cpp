@@ -142,8 +142,11 @@ TEST(TickWire, AFollowerChecksEachSide) {
     t = two_sided_tick();
     t.sides()[s].battery_V(-1.0);
     EXPECT_FALSE(tick_valid(t, 4)) << "side " << s;
+    // A braking side (H-bridge) applies down to -V_B: its mean may be negative, not beyond.
     t = two_sided_tick();
-    t.sides()[s].V_active(-0.5);
+    t.sides()[s].V_active(-0.5 * t.sides()[s].battery_V());
+    EXPECT_TRUE(tick_valid(t, 4)) << "side " << s;
+    t.sides()[s].V_active(-1.5 * t.sides()[s].battery_V());
     EXPECT_FALSE(tick_valid(t, 4)) << "side " << s;
   }
 }

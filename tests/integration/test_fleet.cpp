@@ -218,12 +218,13 @@ TEST(Fleet, ArcEndsAtThePoseTheKinematicsPredict) {
   EXPECT_NEAR(px, x, 0.08);
   EXPECT_NEAR(py, y, 0.08);
   EXPECT_NEAR(pth, th, 1e-3);
-  // The yaw rate settles on the reference 5 m/s / 500 m = 0.01 rad/s (within 2%), and the
-  // heading follows the reference turn of 0.24 rad with the speed loop's lag (at most 30%).
-  EXPECT_NEAR(prev_w, 0.01, 2e-4);
-  EXPECT_LT(pth, 0.24 + 1e-3);
-  EXPECT_GT(pth, 0.7 * 0.24);
+  // Central follows the path in closed loop: the heading ends on the reference turn of
+  // 0.24 rad (it catches up the speed loop's lag), the yaw rate near the arc's 5 m/s / 500 m =
+  // 0.01 rad/s plus the heading loop's correction, and the robot stays on its path.
+  EXPECT_NEAR(pth, 0.24, 0.05);
+  EXPECT_NEAR(prev_w, 0.01, 0.01);
   EXPECT_GT(py, 0.5);  // it turned left
+  EXPECT_LT(r.summary["path"]["cross_track_max_m"].get<double>(), 0.5);
 }
 
 TEST(Fleet, BadScenariosAreRefusedBeforeAnyProcessStarts) {

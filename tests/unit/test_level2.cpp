@@ -292,3 +292,44 @@ TEST(Level2Solver, ReusedSolverRecoversAfterInfeasibleAndFewerLiveAgents) {
     EXPECT_NE(r.ipopt_status, maptr::control::kLevel2InitFailed);
   }
 }
+
+namespace {
+
+/// One side of a steady left turn of radius 4 m at 1 m/s, 16 agents, 30 kg.
+Level2Problem turn_side(int side, bool bidirectional) {
+  Level2Problem p;
+  p.robot.gross_mass_kg = 30.0;
+  p.robot.driver.bidirectional = bidirectional;
+  p.side = side;
+  p.live = p.robot.per_side();
+  p.v_x = 1.0;
+  p.w = 0.25;
+  const double a = p.robot.track_m, r = p.robot.wheel_radius_m;
+  p.phidot_ref_L = (1.0 - 0.5 * a * 0.25) / r;
+  p.phidot_ref_R = (1.0 + 0.5 * a * 0.25) / r;
+  return p;
+}
+
+TEST(Level2, ABrakingSideRunsEveryLiveAgentInTheOracleAndTheSolverAlike) {
+  // The inner (left) side of a tight turn must brake: with the H-bridge every live agent runs.
+  const Level2Problem inner = turn_side(0, true);
+  EXPECT_LT(maptr::control::steady_side_torque(inner), 0.0);
+  ASSERT_TRUE(maptr::control::braking_demand(inner));
+  EXPECT_LT(required_voltage(inner, inner.live), 0.0);  // it drives against the motion
+  const Level2Choice o = exhaustive_level2(inner);
+  EXPECT_EQ(o.n_active, inner.live);
+  EXPECT_TRUE(o.feasible);
+  Level2Solver solver;
+  const Level2Result s = solver.solve(inner);
+  EXPECT_EQ(s.n_active, inner.live);
+  EXPECT_TRUE(s.feasible);
+  EXPECT_EQ(s.ipopt_status, maptr::control::kLevel2NotSolved);
+  // A side that drives, and the unidirectional driver (it cannot brake), choose as before.
+  EXPECT_FALSE(maptr::control::braking_demand(turn_side(1, true)));
+  EXPECT_FALSE(maptr::control::braking_demand(turn_side(0, false)));
+  Level2Problem half = inner;
+  half.live = 4;  // four agents left on the side: all of them
+  EXPECT_EQ(exhaustive_level2(half).n_active, 4);
+}
+
+}  // namespace
