@@ -7,12 +7,14 @@
 // --quick: fewer speeds in (a); in (b) the loop's straights are shortened (5, 4 and 5 m).
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "deploy/experiments/experiment_list.hpp"
 #include "model/battery.hpp"
 #include "model/motor.hpp"
 #include "model/reach.hpp"
+#include "records/trace.hpp"
 
 namespace maptr::deploy {
 
@@ -158,6 +160,36 @@ std::vector<report::Column> loop_columns() {
           {"trace_sha256", "trace sha256", -1}};
 }
 
+/// series/loop-difference.csv: E_EC - E_NO (J) and the active agents of each mode at the trace
+/// rows both runs wrote (the two runs tick alike); false when a trace is missing.
+bool write_difference(const RunPair& p, const std::string& path) {
+  std::vector<records::TraceRow> no, ec;
+  try {
+    no = records::read_trace(p.no.dir + "/trace.csv");
+    ec = records::read_trace(p.ec.dir + "/trace.csv");
+  } catch (const std::exception&) {
+    return false;
+  }
+  std::ofstream o(path);
+  o << "t_s,dE_J,active_NO,active_EC\n";
+  for (std::size_t i = 0; i < no.size() && i < ec.size(); ++i)
+    o << no[i].t_s << "," << ec[i].energy_J - no[i].energy_J << ","
+      << no[i].n_active_L + no[i].n_active_R << "," << ec[i].n_active_L + ec[i].n_active_R << "\n";
+  return true;
+}
+
+void difference_plot(Experiment& e, const RunPair& p) {
+  if (!write_difference(p, e.dir() + "/series/loop-difference.csv")) return;
+  e.plot("turns-difference",
+         "set title 'EC minus NO on the warehouse loop: energy drawn and active agents'\n"
+         "set xlabel 'time (s)'\nset ylabel 'E_EC - E_NO (J)'\nset y2label 'active agents (L + R)'\n"
+         "set y2range [0:17]\nset ytics nomirror\nset y2tics\nset key inside right bottom\n" +
+             report::plot_command(
+                 {{"series/loop-difference.csv", "t_s", "dE_J", "lines lw 2 lc rgb '#c0392b'", "E_EC - E_NO", ""},
+                  {"", "t_s", "active_EC", "steps lw 1 lc rgb '#008837'", "active EC (right axis)", "x1y2"},
+                  {"", "t_s", "active_NO", "steps lw 1 dt 2 lc rgb 'black'", "active NO (right axis)", "x1y2"}}));
+}
+
 void loop_plots(Experiment& e, const RunPair& p) {
   std::vector<std::pair<std::string, std::string>> files;
   for (const Run* r : {&p.no, &p.ec})
@@ -172,6 +204,7 @@ void loop_plots(Experiment& e, const RunPair& p) {
   e.plot("turns-active", "set title 'Active agents (L + R) on the warehouse loop'\n"
                          "set xlabel 'time (s)'\nset ylabel 'active agents'\nset yrange [0:17]\n" +
                              series_plot(files, "n_active", "steps lw 2"));
+  difference_plot(e, p);
 }
 
 std::string loop_intro(const config::Scenario& s, bool quick) {

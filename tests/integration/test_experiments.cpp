@@ -222,7 +222,7 @@ TEST(Experiments, TurnsQuickReachTableAndTheLoopFollowedByNoAndEc) {
   EXPECT_NEAR(num(rows[1], "energy_kJ"), num(rows[0], "energy_kJ"), 0.05 * num(rows[0], "energy_kJ"));
   for (const char* f : {"turns.csv", "turns.md", "turns-reach.csv", "turns-reach.md", "summary.json"})
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
-  for (const char* f : {"turns-reach.png", "turns-energy.png", "turns-active.png"})
+  for (const char* f : {"turns-reach.png", "turns-energy.png", "turns-active.png", "turns-difference.png"})
     EXPECT_TRUE(is_png(out + "/" + f)) << f;
 }
 
