@@ -54,8 +54,8 @@ report::Table reach_table(const config::Scenario& base, const std::vector<double
   t.cols = {{"speed_mps", "speed m/s", 2}};
   for (const auto& d : kDrivers)
     for (double m : kMasses)
-      t.cols.push_back({reach_key(d, m), std::string(d == "bidirectional" ? "bi" : "uni") + " " + kg_label(m) +
-                                             " kg: R_min m",
+      t.cols.push_back({reach_key(d, m),
+                        std::string(d == "bidirectional" ? "bi" : "uni") + " " + kg_label(m) + " kg: R_min m",
                         3});
   for (double v : speeds) {
     json row = {{"speed_mps", v}};
@@ -173,8 +173,8 @@ bool write_difference(const RunPair& p, const std::string& path) {
   std::ofstream o(path);
   o << "t_s,dE_J,active_NO,active_EC\n";
   for (std::size_t i = 0; i < no.size() && i < ec.size(); ++i)
-    o << no[i].t_s << "," << ec[i].energy_J - no[i].energy_J << ","
-      << no[i].n_active_L + no[i].n_active_R << "," << ec[i].n_active_L + ec[i].n_active_R << "\n";
+    o << no[i].t_s << "," << ec[i].energy_J - no[i].energy_J << "," << no[i].n_active_L + no[i].n_active_R
+      << "," << ec[i].n_active_L + ec[i].n_active_R << "\n";
   return true;
 }
 
@@ -185,9 +185,11 @@ void difference_plot(Experiment& e, const RunPair& p) {
          "set xlabel 'time (s)'\nset ylabel 'E_EC - E_NO (J)'\nset y2label 'active agents (L + R)'\n"
          "set y2range [0:17]\nset ytics nomirror\nset y2tics\nset key inside right bottom\n" +
              report::plot_command(
-                 {{"series/loop-difference.csv", "t_s", "dE_J", "lines lw 2 lc rgb '#c0392b'", "E_EC - E_NO", ""},
+                 {{"series/loop-difference.csv", "t_s", "dE_J", "lines lw 2 lc rgb '#c0392b'", "E_EC - E_NO",
+                   ""},
                   {"", "t_s", "active_EC", "steps lw 1 lc rgb '#008837'", "active EC (right axis)", "x1y2"},
-                  {"", "t_s", "active_NO", "steps lw 1 dt 2 lc rgb 'black'", "active NO (right axis)", "x1y2"}}));
+                  {"", "t_s", "active_NO", "steps lw 1 dt 2 lc rgb 'black'", "active NO (right axis)",
+                   "x1y2"}}));
 }
 
 void loop_plots(Experiment& e, const RunPair& p) {
@@ -198,12 +200,14 @@ void loop_plots(Experiment& e, const RunPair& p) {
       files.push_back({r->id, r->label});
     }
   if (files.empty()) return;
-  e.plot("turns-energy", "set title 'Energy drawn on the warehouse loop, NO vs EC (30 kg, 1 m/s)'\n"
-                         "set xlabel 'time (s)'\nset ylabel 'energy (kJ)'\nset key inside left top\n" +
-                             series_plot(files, "energy_kJ"));
-  e.plot("turns-active", "set title 'Active agents (L + R) on the warehouse loop'\n"
-                         "set xlabel 'time (s)'\nset ylabel 'active agents'\nset yrange [0:17]\n" +
-                             series_plot(files, "n_active", "steps lw 2"));
+  e.plot("turns-energy",
+         "set title 'Energy drawn on the warehouse loop, NO vs EC (30 kg, 1 m/s)'\n"
+         "set xlabel 'time (s)'\nset ylabel 'energy (kJ)'\nset key inside left top\n" +
+             series_plot(files, "energy_kJ"));
+  e.plot("turns-active",
+         "set title 'Active agents (L + R) on the warehouse loop'\n"
+         "set xlabel 'time (s)'\nset ylabel 'active agents'\nset yrange [0:17]\n" +
+             series_plot(files, "n_active", "steps lw 2"));
   difference_plot(e, p);
 }
 
@@ -236,9 +240,10 @@ int exp_turns(Experiment& e) {
   std::ostringstream after;
   after << "EC against NO: energy " << fixed(p.ec.energy_kJ() - p.no.energy_kJ(), 3) << " kJ ("
         << fixed(-saving_pct(p), 2) << " %).";
-  e.write(t, loop_intro(s, e.quick()), after.str(),
-          {{"reach", reach_json},
-           {"conditions", {{"agents", s.robot.agents}, {"gross_kg", 30.0}, {"driver", s.robot.driver.name()}}}});
+  e.write(
+      t, loop_intro(s, e.quick()), after.str(),
+      {{"reach", reach_json},
+       {"conditions", {{"agents", s.robot.agents}, {"gross_kg", 30.0}, {"driver", s.robot.driver.name()}}}});
   loop_plots(e, p);
   return e.exit_code();
 }

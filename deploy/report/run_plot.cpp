@@ -129,7 +129,8 @@ std::string path_panel(const std::vector<RunEvent>& events) {
          "set title 'path in the plane (equal scales)'\nset key below Right noreverse samplen 4\n"
          "set autoscale x\nset autoscale y\nset offsets graph 0.03, graph 0.03, graph 0.03, graph 0.03\n" +
          event_points(events) +
-         "plot 'trace.csv' using \"ref_x_m\":\"ref_y_m\" with lines lw 7 lc rgb '#bbbbbb' title 'reference', \\\n"
+         "plot 'trace.csv' using \"ref_x_m\":\"ref_y_m\" with lines lw 7 lc rgb '#bbbbbb' title 'reference', "
+         "\\\n"
          "     '' using \"x_m\":\"y_m\" with lines lw 1.5 lc rgb '#1f4e9f' title 'robot', \\\n"
          "     '' every ::0::0 using \"x_m\":\"y_m\" with points pt 9 ps 2 lc rgb 'black' title 'start'\n";
 }
@@ -211,8 +212,8 @@ std::vector<std::string> path_notes(const nlohmann::json& summary, bool has_path
     std::snprintf(b, sizeof(b), "%.*f", digits, p[k].get<double>());
     return std::string(b);
   };
-  return {"cross-track max " + f("cross_track_max_m", 3) + " m at " + f("cross_track_max_t_s", 1) + " s, rms " +
-              f("cross_track_rms_m", 3) + " m",
+  return {"cross-track max " + f("cross_track_max_m", 3) + " m at " + f("cross_track_max_t_s", 1) +
+              " s, rms " + f("cross_track_rms_m", 3) + " m",
           "heading error max " + f("heading_error_max_rad", 3) + " rad",
           "final position error " + f("final_position_error_m", 3) + " m"};
 }

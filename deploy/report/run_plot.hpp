@@ -18,9 +18,9 @@ namespace maptr::deploy::report {
 /// A mark on the time axis of run.png (and on the path, at the robot's position then).
 struct RunEvent {
   double t_s = 0;
-  std::string label;   ///< e.g. "kill L3", "L3 died"
-  bool fault = false;  ///< faults and membership events are drawn in two colours
-  bool placed = false; ///< x_m, y_m hold the robot's position at t_s
+  std::string label;    ///< e.g. "kill L3", "L3 died"
+  bool fault = false;   ///< faults and membership events are drawn in two colours
+  bool placed = false;  ///< x_m, y_m hold the robot's position at t_s
   double x_m = 0, y_m = 0;
 };
 

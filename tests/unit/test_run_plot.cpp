@@ -3,9 +3,9 @@
 
 #include "deploy/report/run_plot.hpp"
 
-using maptr::deploy::report::run_events;
 using maptr::deploy::report::path_notes;
 using maptr::deploy::report::place_events;
+using maptr::deploy::report::run_events;
 using maptr::deploy::report::run_plot_body;
 using maptr::deploy::report::RunPlotSpec;
 using maptr::deploy::report::scan_trace;
