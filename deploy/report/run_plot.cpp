@@ -14,11 +14,19 @@ namespace maptr::deploy::report {
 
 namespace {
 constexpr const char* kStem = "run";
-constexpr const char* kFrameSize = "1200,1000";
+constexpr const char* kFrameSize = "1700,1250";
 constexpr const char* kFaultColour = "#c0392b";
 constexpr const char* kMemberColour = "#2471a3";
 /// The agents panel reaches this many times the agents per side.
 constexpr double kAgentHeadroom = 1.15;
+/// Screen fractions: the time panels span [kTimeLeft, kTimeRight] from kTop down to kBottom,
+/// each with its key just right of it at kKeyX; the path panel sits in the right column, the
+/// notes under it.
+constexpr double kTimeLeft = 0.055, kTimeRight = 0.46, kKeyX = 0.465, kTop = 0.945, kBottom = 0.045,
+                 kGap = 0.012;
+constexpr const char* kPathOrigin = "0.56,0.30";
+constexpr const char* kPathSize = "0.44,0.66";
+constexpr double kNoteX = 0.60, kNoteTop = 0.26, kNoteStep = 0.025;
 
 std::string fmt(double v) {
   std::ostringstream o;
@@ -26,7 +34,7 @@ std::string fmt(double v) {
   return o.str();
 }
 
-/// A vertical line at each event; on the first panel also its name, rotated.
+/// A vertical line at each event; on the first panel also its name.
 std::string event_lines(const std::vector<RunEvent>& events, bool labels) {
   std::string s = "unset arrow\nunset label\n";
   for (std::size_t i = 0; i < events.size(); ++i) {
@@ -38,6 +46,101 @@ std::string event_lines(const std::vector<RunEvent>& events, bool labels) {
       s += "set label '" + e.label + "' at " + fmt(e.t_s) + ", graph " + fmt(0.97 - 0.12 * (i % 4)) +
            " rotate by 0 offset 0.3,0 font ',9' tc rgb '" + colour + "'\n";
   }
+  return s;
+}
+
+/// Each placed event as a point on the path, named beside it.
+std::string event_points(const std::vector<RunEvent>& events) {
+  std::string s = "unset arrow\nunset label\n";
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const auto& e = events[i];
+    if (!e.placed) continue;
+    const char* colour = e.fault ? kFaultColour : kMemberColour;
+    s += "set label '" + e.label + "' at " + fmt(e.x_m) + "," + fmt(e.y_m) + " point pt 7 ps 1.3 lc rgb '" +
+         colour + "' offset 0.8," + fmt(1.5 - 1.0 * static_cast<double>(i % 4)) + " font ',9' tc rgb '" +
+         colour + "' front\n";
+  }
+  return s;
+}
+
+/// Margins of time panel i of n (0 at the top) and its key, right of it.
+std::string time_frame(int i, int n) {
+  const double h = (kTop - kBottom) / n;
+  const double top = kTop - i * h, bottom = top - h + kGap;
+  return "set tmargin at screen " + fmt(top) + "\nset bmargin at screen " + fmt(bottom) +
+         "\nset key at screen " + fmt(kKeyX) + "," + fmt(top) + " left top Left reverse samplen 2\n";
+}
+
+std::string speed_panel(const std::string& r) {
+  const std::string ref = "((column(\"ref_L_radps\")+column(\"ref_R_radps\"))/2*" + r + ")";
+  return "set ylabel 'speed, m/s'\n"
+         "plot 'trace.csv' using \"t_s\":\"v_x_mps\" with lines lw 2 title 'v_x', \\\n"
+         "     '' using \"t_s\":" +
+         ref + " with lines lw 1 dt 2 lc rgb 'black' title 'reference'\n";
+}
+
+/// Yaw rate and the reference's: r (phidot_ref_R - phidot_ref_L) / a.
+std::string yaw_panel(const std::string& r, const std::string& a) {
+  const std::string ref = "((column(\"ref_R_radps\")-column(\"ref_L_radps\"))*" + r + "/" + a + ")";
+  return "set ylabel 'yaw rate, rad/s'\n"
+         "plot 'trace.csv' using \"t_s\":\"w_radps\" with lines lw 2 title 'w', \\\n"
+         "     '' using \"t_s\":" +
+         ref + " with lines lw 1 dt 2 lc rgb 'black' title 'reference'\n";
+}
+
+std::string heading_panel() {
+  return "set ylabel 'heading, rad'\n"
+         "plot 'trace.csv' using \"t_s\":\"theta_rad\" with lines lw 2 title 'theta', \\\n"
+         "     '' using \"t_s\":\"ref_theta_rad\" with lines lw 1 dt 2 lc rgb 'black' title 'reference'\n";
+}
+
+std::string cross_track_panel() {
+  return "set ylabel 'cross-track, m'\n"
+         "plot 'trace.csv' using \"t_s\":\"cross_track_m\" with lines lw 2 lc rgb '#8e44ad' "
+         "title 'cross-track (> 0: left)', 0 with lines lc rgb 'gray60' notitle\n";
+}
+
+std::string agents_panel(int per_side) {
+  return "set ylabel 'agents'\nset yrange [0:" + fmt(per_side * kAgentHeadroom) + "]\n" +
+         "plot 'trace.csv' using \"t_s\":\"n_active_L\" with steps lw 2 title 'active L', \\\n"
+         "     '' using \"t_s\":\"n_active_R\" with steps lw 2 title 'active R', \\\n"
+         "     '' using \"t_s\":\"n_live_L\" with steps lw 2 dt 2 lc rgb 'black' title 'live L', \\\n"
+         "     '' using \"t_s\":\"n_live_R\" with steps lw 2 dt 3 lc rgb 'gray40' title 'live R'\n"
+         "set autoscale y\n";
+}
+
+std::string energy_panel() {
+  return "set ylabel 'energy, kJ'\n"
+         "plot 'trace.csv' using \"t_s\":(column(\"energy_J\")/1000) with lines lw 2 title 'energy'\n";
+}
+
+std::string battery_panel() {
+  return "set ylabel 'battery, V'\n"
+         "plot 'trace.csv' using \"t_s\":\"battery_V_L\" with lines lw 2 title 'battery L', \\\n"
+         "     '' using \"t_s\":\"battery_V_R\" with lines lw 2 title 'battery R'\n";
+}
+
+/// The robot's path against the reference's in the plane, equal scales, events on it.
+std::string path_panel(const std::vector<RunEvent>& events) {
+  return "set lmargin -1\nset rmargin -1\nset tmargin -1\nset bmargin -1\n"
+         "set origin " +
+         std::string(kPathOrigin) + "\nset size " + kPathSize +
+         "\nset size ratio -1\nset format x '%g'\nset xlabel 'x, m'\nset ylabel 'y, m'\n"
+         "set title 'path in the plane (equal scales)'\nset key below Right noreverse samplen 4\n"
+         "set autoscale x\nset autoscale y\nset offsets graph 0.03, graph 0.03, graph 0.03, graph 0.03\n" +
+         event_points(events) +
+         "plot 'trace.csv' using \"ref_x_m\":\"ref_y_m\" with lines lw 7 lc rgb '#bbbbbb' title 'reference', "
+         "\\\n"
+         "     '' using \"x_m\":\"y_m\" with lines lw 1.5 lc rgb '#1f4e9f' title 'robot', \\\n"
+         "     '' every ::0::0 using \"x_m\":\"y_m\" with points pt 9 ps 2 lc rgb 'black' title 'start'\n";
+}
+
+/// Lines of text in the right column under the path (or in its place).
+std::string notes(const std::vector<std::string>& lines) {
+  std::string s;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    s += "set label '" + lines[i] + "' at screen " + fmt(kNoteX) + "," + fmt(kNoteTop - kNoteStep * i) +
+         " font ',11'\n";
   return s;
 }
 }  // namespace
@@ -55,28 +158,85 @@ std::vector<RunEvent> run_events(const nlohmann::json& summary) {
   return out;
 }
 
-std::string run_plot_body(const std::string& title, double wheel_radius_m, int per_side,
-                          const std::vector<RunEvent>& events) {
-  const std::string r = fmt(wheel_radius_m);
-  const std::string ref = "((column(\"ref_L_radps\")+column(\"ref_R_radps\"))/2*" + r + ")";
-  std::string b = "set multiplot layout 4,1 title '" + title + "'\nset grid\nset key outside right\n";
-  b += "set lmargin 10\nset rmargin 18\nset format x ''\nset autoscale xfix\n";
-  b += event_lines(events, true);
-  b += "set ylabel 'speed, m/s'\n";
-  b += "plot 'trace.csv' using \"t_s\":\"v_x_mps\" with lines lw 2 title 'v_x', \\\n"
-       "     '' using \"t_s\":" +
-       ref + " with lines lw 1 dt 2 lc rgb 'black' title 'reference'\n";
-  b += event_lines(events, false);
-  b += "set ylabel 'agents'\nset yrange [0:" + fmt(per_side * kAgentHeadroom) + "]\n";
-  b += "plot 'trace.csv' using \"t_s\":\"n_active_L\" with steps lw 2 title 'active L', \\\n"
-       "     '' using \"t_s\":\"n_active_R\" with steps lw 2 title 'active R', \\\n"
-       "     '' using \"t_s\":\"n_live_L\" with steps lw 2 dt 2 lc rgb 'black' title 'live L', \\\n"
-       "     '' using \"t_s\":\"n_live_R\" with steps lw 2 dt 3 lc rgb 'gray40' title 'live R'\n";
-  b += "set autoscale y\nset ylabel 'energy, kJ'\n";
-  b += "plot 'trace.csv' using \"t_s\":(column(\"energy_J\")/1000) with lines lw 2 title 'energy'\n";
-  b += "set format x '%g'\nset xlabel 'simulated time, s'\nset ylabel 'battery, V'\n";
-  b += "plot 'trace.csv' using \"t_s\":\"battery_V_L\" with lines lw 2 title 'battery L', \\\n"
-       "     '' using \"t_s\":\"battery_V_R\" with lines lw 2 title 'battery R'\n";
+TracePath scan_trace(const std::string& text) {
+  TracePath p;
+  std::istringstream in(text);
+  std::string line, cell;
+  if (!std::getline(in, line)) return p;
+  std::vector<std::string> head;
+  for (std::istringstream h(line); std::getline(h, cell, ',');) head.push_back(cell);
+  auto index = [&](const char* name) {
+    const auto it = std::find(head.begin(), head.end(), name);
+    return it == head.end() ? -1 : static_cast<int>(it - head.begin());
+  };
+  p.has_path = index("ref_x_m") >= 0 && index("ref_y_m") >= 0 && index("ref_theta_rad") >= 0 &&
+               index("cross_track_m") >= 0;
+  const int it = index("t_s"), ix = index("x_m"), iy = index("y_m");
+  if (it < 0 || ix < 0 || iy < 0) return p;
+  while (std::getline(in, line)) {
+    std::vector<std::string> v;
+    for (std::istringstream r(line); std::getline(r, cell, ',');) v.push_back(cell);
+    if (static_cast<int>(v.size()) <= std::max({it, ix, iy})) continue;
+    try {
+      const double t = std::stod(v[it]), x = std::stod(v[ix]), y = std::stod(v[iy]);
+      p.t_s.push_back(t);
+      p.x_m.push_back(x);
+      p.y_m.push_back(y);
+    } catch (const std::exception&) {
+    }
+  }
+  return p;
+}
+
+void place_events(std::vector<RunEvent>& events, const TracePath& p) {
+  if (p.t_s.empty()) return;
+  for (auto& e : events) {
+    const auto after = std::upper_bound(p.t_s.begin(), p.t_s.end(), e.t_s);
+    const std::size_t k = after == p.t_s.begin() ? 0 : static_cast<std::size_t>(after - p.t_s.begin()) - 1;
+    e.placed = true;
+    e.x_m = p.x_m[k];
+    e.y_m = p.y_m[k];
+  }
+}
+
+std::vector<std::string> path_notes(const nlohmann::json& summary, bool has_path) {
+  if (!has_path)
+    return {"No path panels: this trace.csv has no reference pose",
+            "(ref_x_m, ref_y_m, ref_theta_rad, cross_track_m):",
+            "it was written before the robot followed paths."};
+  const auto p = summary.value("path", nlohmann::json::object());
+  if (p.empty()) return {};
+  auto f = [&](const char* k, int digits) {
+    if (!p.contains(k) || !p[k].is_number()) return std::string("-");
+    char b[32];
+    std::snprintf(b, sizeof(b), "%.*f", digits, p[k].get<double>());
+    return std::string(b);
+  };
+  return {"cross-track max " + f("cross_track_max_m", 3) + " m at " + f("cross_track_max_t_s", 1) +
+              " s, rms " + f("cross_track_rms_m", 3) + " m",
+          "heading error max " + f("heading_error_max_rad", 3) + " rad",
+          "final position error " + f("final_position_error_m", 3) + " m"};
+}
+
+std::string run_plot_body(const RunPlotSpec& spec, const std::vector<RunEvent>& events) {
+  const std::string r = fmt(spec.wheel_radius_m);
+  std::vector<std::string> panels = {speed_panel(r)};
+  if (spec.has_path) {
+    panels.push_back(yaw_panel(r, fmt(spec.track_m)));
+    panels.push_back(heading_panel());
+    panels.push_back(cross_track_panel());
+  }
+  for (const auto& p : {agents_panel(spec.per_side), energy_panel(), battery_panel()}) panels.push_back(p);
+  std::string b = "set multiplot title '" + spec.title + "' font ',13'\nset grid\n";
+  b += "set lmargin at screen " + fmt(kTimeLeft) + "\nset rmargin at screen " + fmt(kTimeRight) +
+       "\nset format x ''\nset autoscale xfix\n";
+  const int n = static_cast<int>(panels.size());
+  for (int i = 0; i < n; ++i) {
+    b += time_frame(i, n) + event_lines(events, i == 0);
+    if (i == n - 1) b += "set format x '%g'\nset xlabel 'simulated time, s'\n" + notes(spec.notes);
+    b += panels[i];
+  }
+  if (spec.has_path) b += path_panel(events);
   return b + "unset multiplot\n";
 }
 
@@ -88,12 +248,21 @@ bool draw_run_plot(const std::string& run_dir) {
     }
   const config::Scenario sc = config::load_scenario(run_dir + "/scenario.yaml");
   const records::Summary s = records::Summary::read(run_dir + "/summary.json");
-  const std::string title = sc.name + ": " + std::to_string(sc.robot.agents) + " agents, mode " + sc.mode +
-                            ", status " + s.status();
-  const std::string body =
-      run_plot_body(title, sc.robot.wheel_radius_m, sc.robot.per_side(), run_events(s.data()));
+  std::ostringstream text;
+  text << std::ifstream(run_dir + "/trace.csv").rdbuf();
+  const TracePath path = scan_trace(text.str());
+  std::vector<RunEvent> events = run_events(s.data());
+  place_events(events, path);
+  RunPlotSpec spec;
+  spec.title = sc.name + ": " + std::to_string(sc.robot.agents) + " agents, " + sc.robot.driver.name() +
+               " driver, mode " + sc.mode + ", status " + s.status();
+  spec.wheel_radius_m = sc.robot.wheel_radius_m;
+  spec.track_m = sc.robot.track_m;
+  spec.per_side = sc.robot.per_side();
+  spec.has_path = path.has_path;
+  spec.notes = path_notes(s.data(), path.has_path);
   return draw_plot(run_dir, kStem, "run.png of " + run_dir + " (maptr plot RUN redraws it)",
-                   PlotFrame{kFrameSize, ",10"}, body);
+                   PlotFrame{kFrameSize, ",10"}, run_plot_body(spec, events));
 }
 
 }  // namespace maptr::deploy::report

@@ -185,10 +185,51 @@ TEST(Experiments, WeightsAndVoltagesQuickIpoptEqualsTheOracleAtEveryDecision) {
   }
 }
 
+// turns --quick: (a) the tightest radius against speed at four speeds, no fleet; (b) the warehouse
+// loop with its straights shortened, 16 agents at 30 kg, NO and EC (two fleets at 100 Hz).
+TEST(Experiments, TurnsQuickReachTableAndTheLoopFollowedByNoAndEc) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/turns";
+  CliResult r;
+  ASSERT_NO_FATAL_FAILURE(run_quick("turns", out, 600, r));
+  const auto& reach = r.summary["reach"]["rows"];
+  ASSERT_EQ(reach.size(), 4u) << r.summary["reach"].dump(2);
+  for (const auto& row : reach)
+    for (const char* m : {"13.2", "30", "38.2"}) {
+      const double bi = num(row, std::string("R_bi_") + m + "kg_m"), uni = num(row, std::string("R_uni_") + m + "kg_m");
+      // An H-bridge brakes the inner side: it turns at least as tightly as a driver that cannot.
+      ASSERT_TRUE(std::isfinite(bi)) << row.dump();
+      if (std::isfinite(uni)) EXPECT_LE(bi, uni + 1e-9) << row.dump();
+    }
+  // The radius the bidirectional robot needs grows with speed (lateral friction, back-EMF).
+  EXPECT_LE(num(reach[0], "R_bi_30kg_m"), num(reach[3], "R_bi_30kg_m")) << r.summary["reach"].dump(2);
+  const auto& rows = r.summary["rows"];
+  EXPECT_EQ(rows[0]["mode"], "NO");
+  EXPECT_EQ(rows[1]["mode"], "EC");
+  for (const auto& row : rows) {
+    EXPECT_EQ(row["status"], "ok") << row.dump();
+    // The loop was followed: within the scenario's 0.5 m path tolerance, the end near its end.
+    EXPECT_LT(num(row, "cross_track_max_m"), 0.5) << row.dump();
+    EXPECT_GE(num(row, "cross_track_max_m"), num(row, "cross_track_rms_m")) << row.dump();
+    EXPECT_GT(num(row, "energy_kJ"), 0.0) << row.dump();
+    EXPECT_EQ(row["trace_sha256"].get<std::string>().size(), 64u) << row.dump();
+  }
+  // NO drives every agent. At 30 kg and 1 m/s Level 2 picks every agent of a side on the
+  // straights and in the turns (`maptr level2`, `maptr level2 --radius 4`): EC is NO here, up to
+  // transients, and never drives more agents than NO.
+  EXPECT_GT(num(rows[0], "active_mean"), 15.9) << rows[0].dump();
+  EXPECT_LE(num(rows[1], "active_mean"), num(rows[0], "active_mean") + 1e-9) << rows[1].dump();
+  EXPECT_NEAR(num(rows[1], "energy_kJ"), num(rows[0], "energy_kJ"), 0.05 * num(rows[0], "energy_kJ"));
+  for (const char* f : {"turns.csv", "turns.md", "turns-reach.csv", "turns-reach.md", "summary.json"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  for (const char* f : {"turns-reach.png", "turns-energy.png", "turns-active.png", "turns-difference.png"})
+    EXPECT_TRUE(is_png(out + "/" + f)) << f;
+}
+
 TEST(Experiments, UnknownNameExitsWith2AndListsTheExperiments) {
   TempDir tmp;
   const auto r = run_cli({"experiment", "no-such-experiment", "--out", tmp.path() + "/x"}, tmp.path() + "/x", 30);
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  for (const char* n : {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures"})
+  for (const char* n : {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures", "turns"})
     EXPECT_NE(r.output.find(n), std::string::npos) << n << " missing from: " << r.output;
 }

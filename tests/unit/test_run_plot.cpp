@@ -3,8 +3,12 @@
 
 #include "deploy/report/run_plot.hpp"
 
+using maptr::deploy::report::path_notes;
+using maptr::deploy::report::place_events;
 using maptr::deploy::report::run_events;
 using maptr::deploy::report::run_plot_body;
+using maptr::deploy::report::RunPlotSpec;
+using maptr::deploy::report::scan_trace;
 
 namespace {
 const nlohmann::json kSummary = {{"failures",
@@ -33,19 +37,67 @@ TEST(RunPlot, FaultsAndMembershipEventsInTimeOrderWithoutSkippedFaults) {
 }
 
 TEST(RunPlot, EveryEventIsALineAcrossThePanelsAndNamedOnTheFirst) {
-  const std::string body = run_plot_body("t", 0.035, 8, run_events(kSummary));
+  RunPlotSpec spec;
+  spec.title = "t";
+  spec.has_path = false;
+  const std::string body = run_plot_body(spec, run_events(kSummary));
   auto count = [&](const std::string& what) {
     std::size_t n = 0;
     for (auto p = body.find(what); p != std::string::npos; p = body.find(what, p + 1)) ++n;
     return n;
   };
-  // Set with its label before the first panel, then again without it; gnuplot keeps arrows for
-  // the panels that follow in a multiplot.
-  EXPECT_EQ(count("set arrow from 5.02,"), 2u);
-  EXPECT_EQ(count("unset arrow"), 2u);
+  // Set with its label before the first panel, then again without it before each of the others.
+  EXPECT_EQ(count("set arrow from 5.02,"), 4u);
+  EXPECT_EQ(count("unset arrow"), 4u);
   EXPECT_EQ(count("set label 'L3 died'"), 1u);
-  EXPECT_EQ(count("plot 'trace.csv'"), 4u);
+  EXPECT_EQ(count("plot 'trace.csv'"), 4u);  // a trace without the path: the four time panels
   // The reference speed: the mean wheel reference times the wheel radius.
   EXPECT_NE(body.find("(column(\"ref_L_radps\")+column(\"ref_R_radps\"))/2*0.035"), std::string::npos);
   EXPECT_NE(body.find("set yrange [0:9.2]"), std::string::npos);  // 8 per side, 15 % headroom
+}
+
+namespace {
+constexpr const char* kOldTrace = "tick,t_s,x_m,y_m,theta_rad\n0,0,0,0,0\n1,1,1,0,0\n2,2,2,0.5,0\n";
+constexpr const char* kNewTrace =
+    "tick,t_s,x_m,y_m,theta_rad,ref_x_m,ref_y_m,ref_theta_rad,cross_track_m\n0,0,0,0,0,0,0,0,0\n";
+}  // namespace
+
+TEST(RunPlot, ATraceWithoutTheReferencePoseHasNoPathPanelsAndSaysSo) {
+  EXPECT_FALSE(scan_trace(kOldTrace).has_path);
+  EXPECT_TRUE(scan_trace(kNewTrace).has_path);
+  const auto notes = path_notes(kSummary, false);
+  ASSERT_FALSE(notes.empty());
+  EXPECT_NE(notes[0].find("No path panels"), std::string::npos);
+}
+
+TEST(RunPlot, EventsArePlacedWhereTheRobotWasAtTheirTime) {
+  auto e = run_events(kSummary);  // 5.0, 5.02, 9.0, 9.01 s
+  e.insert(e.begin(), maptr::deploy::report::RunEvent{-1.0, "early", true});
+  place_events(e, scan_trace(kOldTrace));
+  ASSERT_TRUE(e[0].placed);
+  EXPECT_DOUBLE_EQ(e[0].x_m, 0.0);  // before the first row: the first row
+  EXPECT_DOUBLE_EQ(e[1].x_m, 2.0);  // after the last row: the last row
+  EXPECT_DOUBLE_EQ(e[1].y_m, 0.5);
+}
+
+TEST(RunPlot, WithThePathSevenTimePanelsAndThePathAtEqualScales) {
+  RunPlotSpec spec;
+  spec.title = "t";
+  spec.track_m = 0.2;
+  spec.notes = path_notes({{"path", {{"cross_track_max_m", 0.1234}, {"cross_track_max_t_s", 30.0}}}}, true);
+  auto e = run_events(kSummary);
+  place_events(e, scan_trace(kNewTrace));
+  const std::string body = run_plot_body(spec, e);
+  auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (auto p = body.find(what); p != std::string::npos; p = body.find(what, p + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("plot 'trace.csv'"), 8u);
+  EXPECT_NE(body.find("set size ratio -1"), std::string::npos);
+  EXPECT_NE(body.find("\"ref_x_m\":\"ref_y_m\""), std::string::npos);
+  // The reference yaw rate: r (phidot_ref_R - phidot_ref_L) / a.
+  EXPECT_NE(body.find("((column(\"ref_R_radps\")-column(\"ref_L_radps\"))*0.035/0.2)"), std::string::npos);
+  EXPECT_NE(body.find("set label 'L3 died' at 0,0 point"), std::string::npos);
+  EXPECT_NE(body.find("cross-track max 0.123 m at 30.0 s"), std::string::npos);
 }
