@@ -22,7 +22,9 @@ fail() {
   exit 1
 }
 # The launcher's exit first: a run that failed may have no summary to read.
-[ "$code" -eq 0 ] || fail "maptr run exited $code"
+# (3: degraded. Killing L1 at 10 m/s leaves the left side weaker and the robot may leave its
+# line, which the run reports; this test is about the restart of an unready process.)
+[ "$code" -eq 0 ] || [ "$code" -eq 3 ] || fail "maptr run exited $code"
 status=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["status"])' "$out/summary.json" 2>/dev/null)
 case "$status" in
   ok | "degraded: "*) ;;
