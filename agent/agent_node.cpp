@@ -38,10 +38,27 @@ control::AgentConfig make_config(const config::Scenario& s) {
   c.stop_decel_mps2 = s.control.stop_decel_mps2;
   return c;
 }
+
+/// The scenario's software faults and clears of agent `side`/`index`, at their ticks.
+std::vector<MisbehaviourEvent> misbehaviours(const config::Scenario& s, int side, int index) {
+  std::vector<MisbehaviourEvent> out;
+  const std::string me = config::agent_name(side, index);
+  for (const auto& f : s.faults) {
+    if (f.target != me || !config::is_agent_fault_action(f.action)) continue;
+    MisbehaviourEvent e;
+    e.tick = config::first_tick_at(f.at_s, s.dt());
+    e.value = f.value;
+    if (f.action == "fault" && f.mode == "sensor") e.kind = Misbehaviour::kSensor;
+    if (f.action == "fault" && f.mode == "erratic") e.kind = Misbehaviour::kErratic;
+    if (f.action == "fault" && f.mode == "liar") e.kind = Misbehaviour::kLiar;
+    out.push_back(e);  // a clear, or a motor fault: the software is healthy from then on
+  }
+  return out;
+}
 }  // namespace
 
 AgentNode::AgentNode(const comm::ProcessArgs& args, int side, int index, std::shared_ptr<spdlog::logger> log)
-    : args_(args), side_(side), index_(index), log_(std::move(log)), core_(make_config(args.scenario)) {}
+    : args_(args), side_(side), index_(index), log_(std::move(log)), core_(make_config(args.scenario), misbehaviours(args.scenario, side, index), side, index) {}
 
 int AgentNode::run() {
   comm::TickFollower follower(args_, msg::NODE_AGENT, log_);

@@ -1,11 +1,12 @@
 #pragma once
-// DDS node of one agent: reads Tick, runs AgentCore, answers AgentReply for the same tick.
+// DDS node of one agent: reads Tick, runs its Level 1 (AgentCore, with the software faults the
+// scenario gives it: agent/misbehaviour.hpp), answers AgentReply for the same tick.
 #include <spdlog/logger.h>
 
 #include <memory>
 
 #include "comm/process.hpp"
-#include "control/level1/agent_core.hpp"
+#include "agent/misbehaviour.hpp"
 
 namespace maptr::agent {
 
@@ -19,7 +20,7 @@ class AgentNode {
   const comm::ProcessArgs& args_;
   int side_, index_;
   std::shared_ptr<spdlog::logger> log_;
-  control::AgentCore core_;
+  FaultyAgent core_;
 };
 
 }  // namespace maptr::agent

@@ -46,13 +46,34 @@ struct ControlConfig {
   double stop_decel_mps2 = 2.0;    ///< deceleration of that ramp, m/s^2
   double path_heading_gain_1_s = 2.0;  ///< central's heading gain K (control/central_core.hpp), 1/s
   double path_tolerance_m = 0.5;   ///< a run whose cross-track error exceeds this is degraded, m
+  // Fault detection by the groups (control/diagnosis.hpp).
+  bool fault_detection = true;      ///< the plant publishes the drive's measurements; groups isolate faulty agents
+  double fault_current_A = 0.01;    ///< |measured - model| or |reported - model| beyond this is a residual, A
+  double fault_jitter_V = 0.5;      ///< median |voltage step apart from its side's| beyond this, V
+  double fault_persistence_s = 0.1; ///< a residual must last this long to flag the agent, s
+  double fault_probation_s = 10.0;  ///< an isolated agent is let back after this long (doubled at each relapse), s
 };
 
 struct FaultSpec {
   std::string target;  ///< "L3", "R0", "group-L", "group-R", "central", "plant", "discovery"; a host "h1"
-  std::string action;  ///< "kill" | "restart" | "pause" | "resume" (a process); "kill-host" | "partition" | "heal" (a host)
+  std::string action;  ///< "kill" | "restart" | "pause" | "resume" (a process); "kill-host" | "partition" | "heal" (a host);
+                       ///< "fault" | "clear" (an agent that runs on: a motor or software fault, docs/MODEL.md "Motor faults")
   double at_s = 0.0;   ///< simulated time, s
+  std::string mode;    ///< action fault: open, short, torque, resistance, stuck (motor); sensor, erratic, liar (agent)
+  double value = 0.0;  ///< action fault: torque/resistance F, stuck V [V], sensor B [rad/s], erratic S [V]
 };
+
+/// True for the actions the fleet's processes apply by themselves at their tick (fault, clear):
+/// no process is signalled and the plant holds no gate for them.
+bool is_agent_fault_action(const std::string& action);
+/// Why a fault's mode and value do not fit its action ("" when they do); `field` is set to the
+/// field at fault ("mode" or "value"). The rules: action fault needs a mode, with a value for
+/// torque (0, 1], resistance [1, 100], stuck (the driver's range at the rated voltage), sensor
+/// (nonzero, |B| <= 1000 rad/s), erratic (0, 100] V, and none (0) for open, short and liar;
+/// every other action takes neither.
+std::string fault_mode_problem(const FaultSpec& f, const model::RobotParams& robot, std::string& field);
+/// The first tick k with k dt >= at_s: when the plant and an agent apply a fault or clear at at_s.
+long long first_tick_at(double at_s, double dt_s);
 
 /// True for the actions whose target is a host (kill-host, partition, heal).
 bool is_host_action(const std::string& action);

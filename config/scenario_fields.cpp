@@ -25,6 +25,11 @@ std::string target_problem(const std::string& t) {
   return "must be an agent (L0, R3, ...), group-L, group-R, central, plant, discovery or a host (h0, h1, ...)";
 }
 
+/// A text field that may also be empty.
+std::string empty_only(const std::string& t) {
+  return t.empty() ? "" : "must be one of open, short, torque, resistance, stuck, sensor, erratic, liar (or empty)";
+}
+
 using S = Scenario;
 
 /// robot.driver: a choice of text kept as DriverParams::bidirectional.
@@ -206,6 +211,26 @@ Table<S> control_fields() {
           above(0, 1e6), "m",
           "a run whose cross-track error exceeds this after its first second ends degraded "
           "(path not followed)"),
+      flag<S>(
+          "control.fault_detection", [](auto& s) -> auto& { return s.control.fault_detection; },
+          "the plant publishes what each wheel's drive measures and the groups isolate the agents whose "
+          "measurements disagree with the motor model (docs/ARCHITECTURE.md \"Fault detection\")"),
+      real<S>(
+          "control.fault_current_A", [](auto& s) -> auto& { return s.control.fault_current_A; },
+          above(0, 1e3), "A",
+          "a measured current off the motor model's, or a reported one off the measured speed's, by more "
+          "than this is a residual"),
+      real<S>(
+          "control.fault_jitter_V", [](auto& s) -> auto& { return s.control.fault_jitter_V; }, above(0, 1e3),
+          "V", "an agent's voltage steps apart from its side's median step, their median over the persistence "
+          "time beyond this is a residual (erratic voltages)"),
+      real<S>(
+          "control.fault_persistence_s", [](auto& s) -> auto& { return s.control.fault_persistence_s; },
+          above(0, 1e3), "s", "a residual that lasts this long flags the agent faulty"),
+      real<S>(
+          "control.fault_probation_s", [](auto& s) -> auto& { return s.control.fault_probation_s; },
+          above(0, 1e7), "s",
+          "an isolated agent is let back after this long, doubled each time it is flagged again"),
       real<S>(
           "trajectory.accel_mps2", [](auto& s) -> auto& { return s.trajectory.accel_mps2; }, closed(0, 1e3),
           "m/s^2", "ramp limit on the speed reference (0: steps)"),
@@ -271,11 +296,22 @@ const Table<FaultSpec>& fault_table() {
           "an agent of the robot (L0, R3, ...) or a host (h0, h1, ...)"),
       text<F>(
           "action", [](auto& f) -> auto& { return f.action; },
-          {"kill", "restart", "pause", "resume", "kill-host", "partition", "heal"},
-          "what to do to it (pause: SIGSTOP, resume: SIGCONT; kill-host, partition, heal: to a host)"),
+          {"kill", "restart", "pause", "resume", "kill-host", "partition", "heal", "fault", "clear"},
+          "what to do to it (pause: SIGSTOP, resume: SIGCONT; kill-host, partition, heal: to a host; "
+          "fault, clear: an agent breaks while it runs on, and is mended)"),
       real<F>(
           "at_s", [](auto& f) -> auto& { return f.at_s; }, closed(0, 1e6), "s",
           "simulated time of the action (within the run)"),
+      text<F>(
+          "mode", [](auto& f) -> auto& { return f.mode; },
+          {"open", "short", "torque", "resistance", "stuck", "sensor", "erratic", "liar"},
+          "action fault: open, short (winding), torque (weak magnet), resistance, stuck (driver) in the motor; "
+          "sensor, erratic, liar in the agent (docs/MODEL.md \"Motor faults\")",
+          &empty_only, "or empty (an action other than fault)"),
+      real<F>(
+          "value", [](auto& f) -> auto& { return f.value; }, Range{-1e6, 1e6, false, false, false, 1}, "1",
+          "action fault: torque F in (0, 1], resistance F in [1, 100], stuck V [V], sensor B [rad/s], "
+          "erratic S [V]; 0 for open, short and liar"),
   };
   return t;
 }

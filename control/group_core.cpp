@@ -23,6 +23,13 @@ GroupCore::GroupCore(int side, const GroupConfig& config, std::string ledger_pat
       own_runner_(runner ? nullptr : std::make_unique<InlineLevel2Runner>(config.oracle)),
       runner_(runner ? runner : own_runner_.get()),
       defer_ticks_(std::llround(config.level2_defer_s / config.dt_s)) {
+  if (config.fault_detection) {
+    DiagnosisConfig dc = config.diagnosis;
+    dc.motor = config.robot.motor;
+    dc.driver = config.robot.driver;
+    dc.dt_s = config.dt_s;
+    diagnosis_.emplace(config.robot.per_side(), dc);
+  }
   if (!ledger_path_.empty()) resumed_ = ledger_.load(ledger_path_, config.robot.per_side());
 }
 
@@ -97,8 +104,15 @@ int GroupCore::decide_count(const GroupInput& in, bool cruising, GroupDecision& 
   return std::min(target, d.n_live);
 }
 
-GroupDecision GroupCore::step(const GroupInput& in) {
+GroupDecision GroupCore::step(const GroupInput& measured_in) {
   const int n = c_.robot.per_side();
+  // Faulty agents first: from here on a flagged agent is not live.
+  GroupInput in = measured_in;
+  std::vector<DiagnosisChange> diagnosed;
+  if (diagnosis_ && in.measured) diagnosed = diagnosis_->step(in.t, in.drives);
+  if (diagnosis_)
+    for (int j = 0; j < n; ++j)
+      if (diagnosis_->flags()[static_cast<std::size_t>(j)]) in.live[static_cast<std::size_t>(j)] = 0;
   // The assignment in force over [t_{k-1}, t_k] drove |v_side| dt each.
   if (ledger_.last_t >= 0.0 && in.t > ledger_.last_t) {
     const double dt = in.t - ledger_.last_t;
@@ -143,7 +157,9 @@ GroupDecision GroupCore::step(const GroupInput& in) {
   d.n_active = count(next);
   d.decisions = ledger_.decisions;
   d.reallocations = ledger_.reallocations;
+  d.faulty = diagnosis_ ? diagnosis_->flags() : std::vector<uint8_t>(static_cast<std::size_t>(n), 0);
   last_ = d;
+  d.diagnosed = std::move(diagnosed);
   const long long period_ticks = std::max(1LL, std::llround(c_.level2_period_s / c_.dt_s));
   if (changed || in.tick % period_ticks == 0) save();
   return d;

@@ -11,6 +11,9 @@
 //     - Level 3 (allocate() on the wear Ledger) chooses which agents every t_on_s [s], whenever
 //       N_a or the number of active agents changes, and when an active agent reaches the
 //       thermal limit thermal_limit_s [s] of continuous operation.
+// Fault detection (control/diagnosis.hpp), when the tick carries the drive's measurements: an
+// agent flagged faulty counts as not live (Level 2 counts one fewer, Level 3 never assigns it)
+// until its probation is over; GroupDecision::faulty announces it (the plant disconnects it).
 // The ledger is saved (if a path is given) on every change of the assignment and once per
 // Level-2 period, and loaded at construction: a restarted controller resumes it.
 // Pure: explicit time (GroupInput::t), no DDS, no clock (except the solver's diagnostic timing).
@@ -20,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "control/diagnosis.hpp"
 #include "control/level2/runner.hpp"
 #include "control/level2/status.hpp"
 #include "control/level3/ledger.hpp"
@@ -42,6 +46,8 @@ struct GroupConfig {
   bool oracle = false;             ///< also solve by exhaustive search and report its choice
   double cruise_enter = 0.05;      ///< relative speed error at or below which cruise starts
   double cruise_leave = 0.20;      ///< relative speed error above which cruise ends
+  bool fault_detection = true;     ///< watch the agents when the tick carries measurements
+  DiagnosisConfig diagnosis;       ///< its thresholds (motor, driver and dt_s from robot and dt_s)
 };
 
 /// What the group reads from one tick.
@@ -55,6 +61,8 @@ struct GroupInput {
   std::vector<uint8_t> live;                      ///< membership of this side (from the plant)
   std::vector<uint8_t> active;                    ///< assignment in force over [t_{k-1}, t_k]
   int n_other = 0;                                ///< other side's active count, relayed by central
+  bool measured = false;                          ///< the tick carries the drive's measurements
+  SideSample drives;                              ///< what the plant measured of each agent's drive
 };
 
 struct GroupDecision {
@@ -69,6 +77,8 @@ struct GroupDecision {
   int level2_n_other = 0;   ///< the other side's count in those inputs
   int ipopt_n_active = -1;  ///< the solver's integer choice (before the feasibility fallback)
   uint64_t decisions = 0, reallocations = 0;
+  std::vector<uint8_t> faulty;              ///< per agent: 0, or the Diagnosis it is isolated for
+  std::vector<DiagnosisChange> diagnosed;   ///< flags raised or lowered at this tick
 };
 
 class GroupCore {
@@ -110,6 +120,7 @@ class GroupCore {
   double last_l2_t_ = kNeverS;
   bool cruise_ = false;
   GroupDecision last_;
+  std::optional<SideDiagnosis> diagnosis_;
 };
 
 }  // namespace maptr::control

@@ -38,6 +38,11 @@ control::GroupConfig make_config(const config::Scenario& s) {
   c.t_on_s = s.control.t_on_s;
   c.thermal_limit_s = s.control.thermal_limit_s;
   c.oracle = s.control.oracle;
+  c.fault_detection = s.control.fault_detection;
+  c.diagnosis.current_A = s.control.fault_current_A;
+  c.diagnosis.jitter_V = s.control.fault_jitter_V;
+  c.diagnosis.persistence_s = s.control.fault_persistence_s;
+  c.diagnosis.probation_s = s.control.fault_probation_s;
   return c;
 }
 /// What group `side` reads from a tick.
@@ -55,6 +60,20 @@ control::GroupInput group_input(const msg::PlantTick& t, int side) {
   in.live = own.live();
   in.active = own.active();
   in.n_other = own.relay_count();
+  in.measured = !own.measured_A().empty();
+  if (in.measured) {
+    in.drives.phidot = own.phidot();
+    in.drives.phidot_prev = own.phidot_prev();
+    in.drives.agents.resize(own.measured_A().size());
+    for (std::size_t j = 0; j < own.measured_A().size(); ++j) {
+      control::DriveSample& d = in.drives.agents[j];
+      d.drove = own.drove()[j] != 0;
+      d.drive_V = own.drive_V()[j];
+      d.measured_A = own.measured_A()[j];
+      d.reported = own.reported()[j] != 0;
+      d.reported_A = own.reported_A()[j];
+    }
+  }
   return in;
 }
 
@@ -138,6 +157,15 @@ int GroupNode::run() {
     st.solve_time_ms(d.solve_time_ms);
     st.decisions(d.decisions);
     st.reallocations(d.reallocations);
+    st.faulty(d.faulty);
+    for (const auto& ch : d.diagnosed) {
+      const std::string name = config::agent_name(side_, ch.index);
+      if (ch.flag == control::Diagnosis::kNone)
+        log_->info("{} let back after its probation at t={:.2f} s", name, in.t);
+      else
+        log_->warn("{} isolated at t={:.2f} s: it looks {} (its measurements disagree with the motor model)", name,
+                   in.t, control::diagnosis_name(ch.flag));
+    }
     st.rejected(follower.rejected());
     follower.answer(st);
   });

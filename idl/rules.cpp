@@ -22,12 +22,26 @@ bool name_ok(const std::string& n) { return !n.empty() && n.size() <= kMaxNameLe
 /// that tick's battery voltage; the battery's voltage at t_k may be a little lower.
 constexpr double kVoltageMargin = 1.01;
 
+/// The drive's measurements: all absent, or one finite entry per agent.
+bool measurements(const SideTick& s, std::size_t per_side) {
+  if (s.drove().empty() && s.drive_V().empty() && s.measured_A().empty() && s.reported().empty() &&
+      s.reported_A().empty())
+    return true;
+  if (!mask(s.drove(), per_side) || !mask(s.reported(), per_side) || s.drive_V().size() != per_side ||
+      s.measured_A().size() != per_side || s.reported_A().size() != per_side)
+    return false;
+  for (std::size_t i = 0; i < per_side; ++i)
+    if (!std::isfinite(s.drive_V()[i]) || !std::isfinite(s.measured_A()[i]) || !std::isfinite(s.reported_A()[i]))
+      return false;
+  return true;
+}
+
 bool side_tick(const SideTick& s, std::size_t per_side) {
   return finite_all({s.phidot(), s.battery_V(), s.discharge_mAh(), s.phidot_ref(), s.V_active(),
                      s.phidot_prev(), s.phidot_ref_prev()}) &&
          mask(s.active(), per_side) && mask(s.live(), per_side) && mask(s.wake(), per_side) &&
          s.battery_V() >= 0 && s.V_active() >= -kVoltageMargin * s.battery_V() && s.n_active() <= per_side && s.relay_count() <= per_side &&
-         s.group_stamp() >= -1;
+         s.group_stamp() >= -1 && measurements(s, per_side);
 }
 }  // namespace
 
@@ -49,6 +63,9 @@ bool well_formed(const AgentReply& r, const FleetBounds& b) {
 bool well_formed(const GroupStatus& g, const FleetBounds& b) {
   const std::size_t n = b.per_side;
   if (g.side() > SIDE_R || !mask(g.active(), n) || !mask(g.live(), n) || g.wear_m().size() != n) return false;
+  if (!g.faulty().empty() && g.faulty().size() != n) return false;
+  for (uint8_t f : g.faulty())
+    if (f > DIAG_LIAR) return false;
   for (double w : g.wear_m())
     if (!std::isfinite(w) || w < 0.0) return false;
   if (g.n_active() > n || g.n_live() > n || g.n_other() > n || g.level2_status() > L2_SOLVER_FAILED)

@@ -11,28 +11,52 @@ namespace {
 constexpr double kTwoOverPi = 2.0 / M_PI;
 }
 
+namespace {
+/// One active motor's current, torque and losses into s (with the driver's accounting).
+void add_active(SideLoad& s, const MotorParams& m, const DriverParams& d, double v, double phidot, double sgn,
+                double& brake_A, double& brake_W) {
+  const double cur = armature_current(m, d, v, phidot);
+  const double p = v * cur;
+  s.torque_Nm += active_torque(m, cur, phidot);
+  if (p >= 0.0) {
+    s.current_A += d.bidirectional ? std::fabs(cur) : cur;
+    s.power_W += p;
+  } else {
+    brake_A += std::fabs(cur);
+    brake_W -= p;
+  }
+  s.joule_W += cur * cur * m.resistance_ohm;
+  s.motor_loss_W += (m.torque_constant_NmA * m.no_load_current_A * sgn + m.viscous_Nms * phidot) * phidot;
+  s.emf_loss_W += (m.back_emf_Vs - m.torque_constant_NmA) * cur * phidot;
+}
+
+/// A motor whose winding is shorted: the current circulates through the short.
+void add_shorted(SideLoad& s, const MotorParams& m, double phidot, double sgn) {
+  const double cur = -m.back_emf_Vs * phidot / m.resistance_ohm;
+  s.torque_Nm += active_torque(m, cur, phidot);
+  s.joule_W += cur * cur * m.resistance_ohm;
+  s.motor_loss_W += (m.torque_constant_NmA * m.no_load_current_A * sgn + m.viscous_Nms * phidot) * phidot;
+  s.emf_loss_W += (m.back_emf_Vs - m.torque_constant_NmA) * cur * phidot;
+}
+}  // namespace
+
 SideLoad side_load(const MotorParams& m, const DriverParams& d, const std::vector<double>& voltage,
-                   const std::vector<uint8_t>& active, double phidot) {
+                   const std::vector<uint8_t>& active, double phidot, const std::vector<MotorFault>& faults) {
   SideLoad s;
   const double sgn = smooth_sign(phidot, m.friction_sign_scale_rad_s);
   const double drag = m.viscous_Nms * phidot;
   double brake_A = 0.0, brake_W = 0.0;  // braking motors' current and returned power (>= 0)
   for (std::size_t i = 0; i < active.size(); ++i) {
-    if (active[i]) {
-      const double v = voltage[i];
-      const double cur = armature_current(m, d, v, phidot);
-      const double p = v * cur;
-      s.torque_Nm += active_torque(m, cur, phidot);
-      if (p >= 0.0) {
-        s.current_A += d.bidirectional ? std::fabs(cur) : cur;
-        s.power_W += p;
-      } else {
-        brake_A += std::fabs(cur);
-        brake_W -= p;
-      }
-      s.joule_W += cur * cur * m.resistance_ohm;
-      s.motor_loss_W += (m.torque_constant_NmA * m.no_load_current_A * sgn + drag) * phidot;
-      s.emf_loss_W += (m.back_emf_Vs - m.torque_constant_NmA) * cur * phidot;
+    const MotorFault* f = faults.empty() || faults[i].healthy() ? nullptr : &faults[i];
+    if (active[i] && !f) {
+      add_active(s, m, d, voltage[i], phidot, sgn, brake_A, brake_W);
+    } else if (active[i]) {
+      const MotorParams fm = faulted_params(m, *f);
+      const double fsgn = smooth_sign(phidot, fm.friction_sign_scale_rad_s);
+      if (f->kind == MotorFaultKind::kShort)
+        add_shorted(s, fm, phidot, fsgn);
+      else
+        add_active(s, fm, d, voltage[i], phidot, fsgn, brake_A, brake_W);
     } else {
       s.torque_Nm += inactive_torque(m, phidot);
       s.motor_loss_W += drag * phidot;
@@ -104,8 +128,8 @@ void derivative(const RobotParams& p, const Inputs& u, const double* x, double* 
   const double v = x[kVx], w = x[kW], th = x[kTheta];
   const WheelSpeeds ws = to_wheels({v, w}, a);
   const double v_l = ws.v_L, v_r = ws.v_R;
-  const SideLoad left = side_load(p.motor, p.driver, u.voltage_L, u.active_L, v_l / r);
-  const SideLoad right = side_load(p.motor, p.driver, u.voltage_R, u.active_R, v_r / r);
+  const SideLoad left = side_load(p.motor, p.driver, u.voltage_L, u.active_L, v_l / r, u.fault_L);
+  const SideLoad right = side_load(p.motor, p.driver, u.voltage_R, u.active_R, v_r / r, u.fault_R);
   const BodyForces b = body_forces(p, left.torque_Nm, right.torque_Nm, v, w);
 
   dx[kX] = v * std::cos(th);

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "model/motor_fault.hpp"
 #include "model/params.hpp"
 
 namespace maptr::model {
@@ -42,10 +43,13 @@ enum StateIndex : int {
 using State = std::array<double, kStateSize>;
 
 /// Inputs held over one tick (zero-order hold): each agent's voltage and activation.
-/// Index i of side s is agent s<i>; voltage of an inactive agent is ignored.
+/// Index i of side s is agent s<i>; voltage of an inactive agent is ignored. A motor's fault
+/// (model/motor_fault.hpp) changes how an active one turns its voltage into current and torque;
+/// open circuits and stuck drivers are already in active and voltage (model::winding()).
 struct Inputs {
   std::vector<double> voltage_L, voltage_R;  ///< V
   std::vector<uint8_t> active_L, active_R;   ///< 1 = motor driven, 0 = free-wheeling
+  std::vector<MotorFault> fault_L, fault_R;  ///< empty: every motor of the side healthy
 
   explicit Inputs(int per_side = 0)
       : voltage_L(per_side, 0.0), voltage_R(per_side, 0.0), active_L(per_side, 0), active_R(per_side, 0) {}
@@ -66,8 +70,12 @@ struct SideLoad {
 /// the battery at power V I_a. One that brakes (V I_a < 0) hands -V I_a to the driver, which
 /// dissipates it, or with regeneration charges the battery with it, up to charge_limit_A of
 /// the side's summed braking current (the share above the limit is dissipated).
+/// A faulted motor's share: torque=F and resistance=F with their parameters; a shorted one
+/// (fault short, active at 0 V) carries -K_e phidot / Omega through the short, heating its winding
+/// and drawing nothing from the battery. faults empty: all healthy.
 SideLoad side_load(const MotorParams& m, const DriverParams& d, const std::vector<double>& voltage,
-                   const std::vector<uint8_t>& active, double phidot_rad_s);
+                   const std::vector<uint8_t>& active, double phidot_rad_s,
+                   const std::vector<MotorFault>& faults = {});
 
 /// Effective inertias of the robot with its N wheels (wheel inertia I_w seen at the body):
 ///   m_eff = m + N I_w / r^2  [kg],   I_eff = I_zz + N I_w a^2 / (4 r^2)  [kg m^2].

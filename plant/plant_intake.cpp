@@ -1,10 +1,12 @@
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <thread>
 
 #include "comm/fleet_ids.hpp"
 #include "comm/lockstep.hpp"
 #include "config/scenario.hpp"
+#include "control/diagnosis.hpp"
 #include "model/kinematics.hpp"
 #include "plant/plant_loop.hpp"
 
@@ -28,6 +30,28 @@ bool PlantLoop::admit(Verdict v, bool own, unsigned long long tick, long long k,
               v == Verdict::kMalformed ? " malformed" : "", what, side, index, tick, k,
               own ? "" : ", from a participant other than its sender's");
   return false;
+}
+
+const char* const* PlantLoop::diagnosis_names() {
+  static const auto names = [] {
+    std::array<const char*, control::kDiagnosisCount> a{};
+    for (int i = 0; i < control::kDiagnosisCount; ++i) a[i] = control::diagnosis_name(static_cast<control::Diagnosis>(i));
+    return a;
+  }();
+  return names.data();
+}
+
+void PlantLoop::log_diagnoses(int side, const std::vector<uint8_t>& flags) {
+  if (flags.size() != static_cast<std::size_t>(per_side_)) return;
+  for (int j = 0; j < per_side_; ++j) {
+    const bool was = core_.faults().disconnected(side, j), now = flags[static_cast<std::size_t>(j)] != 0;
+    if (was == now) continue;
+    if (now)
+      log_.warn("{} isolated by its group at t={:.2f} s ({}): its motor is disconnected", config::agent_name(side, j),
+                core_.t(), control::diagnosis_name(static_cast<control::Diagnosis>(flags[static_cast<std::size_t>(j)])));
+    else
+      log_.info("{} let back by its group at t={:.2f} s", config::agent_name(side, j), core_.t());
+  }
 }
 
 bool PlantLoop::once(Once o, const char* what, int side, int index, long long k) {
@@ -78,6 +102,8 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
         cmd_.mask[s][j] = 0;  // never trust a dead agent's assignment
     cmd_.group_stamp[s] = k;
     group_rejects_[s] = g.rejected();
+    log_diagnoses(s, g.faulty());
+    core_.on_group_flags(s, g.faulty(), diagnosis_names(), control::kDiagnosisCount);
     const int before = wear_.regressions(s);
     wear_.on_status(s, g.wear_m(), core_.t());
     if (wear_.regressions(s) > before)
@@ -162,6 +188,9 @@ void PlantLoop::wait_for_answers(uint64_t seen, std::chrono::milliseconds at_mos
 }
 
 void PlantLoop::integrate() {
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j < per_side_; ++j)
+      cmd_.applied[s][static_cast<std::size_t>(j)].disconnected = core_.faults().disconnected(s, j);
   // Row k is written before the integration, so that a run whose integration fails keeps it.
   files_->write(core_.hold(cmd_.applied[0], cmd_.applied[1], cmd_.ref[0], cmd_.ref[1],
                            membership_.live_count(0), membership_.live_count(1)));
@@ -198,6 +227,7 @@ int PlantLoop::report(bool stopped) {
   e.cross_track_max_m = core_.tracking().cross_track_max();
   e.cross_track_max_t_s = core_.tracking().cross_track_max_t();
   e.path_tolerance_m = sc_.control.path_tolerance_m;
+  if (sc_.control.fault_detection) e.fault_problems = fault_problems(core_.faults());
   ReportInputs in;
   in.status = run_status(e, c_.degraded_band_pct);
   in.end_reason = end_reason_;

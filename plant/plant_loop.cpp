@@ -37,12 +37,19 @@ sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConf
   pc.speed_lost_hold_s = c.speed_lost_hold_s;
   pc.reached_band_pct = c.reached_band_pct;
   pc.trajectory = sc.trajectory;
+  for (const auto& f : sc.faults) {
+    int side = 0, index = 0;
+    if (!config::is_agent_fault_action(f.action) || !config::parse_agent_name(f.target, side, index)) continue;
+    pc.agent_faults.push_back(
+        {config::first_tick_at(f.at_s, sc.dt()), side, index, f.action == "clear", f.mode, f.value});
+  }
   return pc;
 }
 
 std::vector<double> fault_times(const std::vector<config::FaultSpec>& faults) {
   std::vector<double> t;
-  for (const auto& f : faults) t.push_back(f.at_s);
+  for (const auto& f : faults)
+    if (!config::is_agent_fault_action(f.action)) t.push_back(f.at_s);  // applied at their tick, no gate
   return t;
 }
 
@@ -213,12 +220,31 @@ void PlantLoop::publish(msg::RunState run_state) {
     side.group_stamp(cmd_.group_stamp[s]);
     side.n_active(static_cast<uint16_t>(count(cmd_.mask[s])));
     side.relay_count(static_cast<uint16_t>(cmd_.relay[s]));
+    if (sc_.control.fault_detection && new_tick) put_measurements(side, s);
   }
   published_tick_ = core_.tick();
   t.paused(membership_.paused_mask());
   t.run_state(run_state);
   set_wake();
   write_tick();
+}
+
+void PlantLoop::put_measurements(msg::SideTick& side, int s) {
+  // What the drive measured over the tick just integrated (zeros at tick 0), filled in place.
+  const auto& m = core_.measurements(s);
+  const std::size_t n = m.size();
+  side.drove().resize(n);
+  side.drive_V().resize(n);
+  side.measured_A().resize(n);
+  side.reported().resize(n);
+  side.reported_A().resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    side.drove()[j] = m[j].drove ? 1 : 0;
+    side.drive_V()[j] = static_cast<float>(m[j].drive_V);
+    side.measured_A()[j] = static_cast<float>(m[j].measured_A);
+    side.reported()[j] = m[j].reported ? 1 : 0;
+    side.reported_A()[j] = static_cast<float>(m[j].reported_A);
+  }
 }
 
 void PlantLoop::set_wake() {

@@ -143,6 +143,11 @@ class PlantLoop {
   long long published_tick_ = -1;  ///< sent_'s tick, -1 before the first
   /// Sets each side's wake mask of sent_ (SideTick::wake): assigned, idle slot due or rejoining.
   void set_wake();
+  /// Fills a side's drive measurements of the tick last integrated (fault detection).
+  void put_measurements(msg::SideTick& side, int s);
+  /// Logs the agents a group isolates or lets back (before the core takes its flags).
+  void log_diagnoses(int side, const std::vector<uint8_t>& flags);
+  static const char* const* diagnosis_names();
   /// Writes sent_ on the tick writer (through the filter gate).
   void write_tick() {
     filter_gate_.write([this] { w_tick_->write(&sent_); });

@@ -42,6 +42,11 @@ std::string run_status(const RunEnd& e, double degraded_band_pct) {
     return "degraded: " + names + " dead or paused at the end; " +
            (e.silent_controllers.size() == 1 ? "its" : "their") + " agents ran on their own safe behaviour";
   }
+  if (!e.fault_problems.empty()) {
+    std::string all;
+    for (const auto& p : e.fault_problems) all += (all.empty() ? "" : "; ") + p;
+    return "degraded: " + all;
+  }
   if (e.path_tolerance_m > 0.0 && e.cross_track_max_m > e.path_tolerance_m) {
     char why[160];
     std::snprintf(why, sizeof(why),
@@ -66,6 +71,48 @@ std::string end_reason(bool speed_lost, double stop_below_speed_pct, double hold
   hold << hold_s;
   return "the speed stayed more than " + std::to_string(stop_below_speed_pct) + "% below its reference for " +
          hold.str() + " s at t=" + std::to_string(t_s) + " s";
+}
+
+std::vector<std::string> fault_problems(const sim::FaultBook& book) {
+  std::vector<std::string> out;
+  char line[200];
+  for (const auto& r : book.records()) {
+    if (r.detected_s) continue;
+    std::snprintf(line, sizeof(line), "fault %s%s on %s at %.2f s not detected", r.mode.c_str(),
+                  r.value != 0.0 ? ("=" + model::param_value(r.value)).c_str() : "", r.target.c_str(), r.injected_s);
+    out.push_back(line);
+  }
+  for (const auto& e : book.events())
+    if (e.false_detection) {
+      std::snprintf(line, sizeof(line), "%s isolated at %.2f s as %s with no fault in force (a false detection)",
+                    e.target.c_str(), e.t_s, e.diagnosed.c_str());
+      out.push_back(line);
+    }
+  return out;
+}
+
+nlohmann::json agent_faults_json(const sim::FaultBook& book) {
+  auto opt = [](const std::optional<double>& v) -> nlohmann::json { return v ? nlohmann::json(*v) : nlohmann::json(); };
+  nlohmann::json faults = nlohmann::json::array();
+  for (const auto& r : book.records())
+    faults.push_back({{"target", r.target},
+                      {"mode", r.mode},
+                      {"value", r.value},
+                      {"injected_s", r.injected_s},
+                      {"detected_s", opt(r.detected_s)},
+                      {"isolated_s", opt(r.isolated_s)},
+                      {"diagnosed_mode", r.diagnosed_mode.empty() ? nlohmann::json() : nlohmann::json(r.diagnosed_mode)},
+                      {"relapses", r.relapses},
+                      {"cleared_s", opt(r.cleared_s)},
+                      {"readmitted_s", opt(r.readmitted_s)}});
+  nlohmann::json events = nlohmann::json::array();
+  for (const auto& e : book.events())
+    events.push_back({{"t_s", e.t_s},
+                      {"target", e.target},
+                      {"event", e.diagnosed.empty() ? "readmitted" : "isolated"},
+                      {"diagnosed", e.diagnosed},
+                      {"false_detection", e.false_detection}});
+  return {{"faults", faults}, {"diagnoses", events}, {"false_detections", book.false_detections()}};
 }
 
 nlohmann::json membership_json(const std::vector<MembershipRecord>& records) {
@@ -117,6 +164,7 @@ nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
   j["declared_dead_by_deadline"] = in.declared_dead_by_deadline;
   j["membership_events"] = membership_json(records);
   j["group_wear"] = in.group_wear;
+  j["agent_faults"] = agent_faults_json(core.faults());
   return j;
 }
 

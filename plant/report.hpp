@@ -44,10 +44,19 @@ struct RunEnd {
   double cross_track_max_m = 0.0;    ///< largest |cross-track error| after the first second, m
   double cross_track_max_t_s = 0.0;  ///< when it was, s
   double path_tolerance_m = 0.0;     ///< above this the path was not followed (0: not judged)
+  /// With fault detection on: the agents' faults left undetected, and the false detections
+  /// (fault_problems(), in words).
+  std::vector<std::string> fault_problems;
 };
 
+/// What the fault record says went wrong: each injected fault its group never flagged ("fault
+/// sensor=5 on L3 at 20.00 s not detected") and each flag raised on an agent with no fault in
+/// force ("L3 isolated at 12.30 s as short with no fault in force (a false detection)").
+std::vector<std::string> fault_problems(const sim::FaultBook& book);
+
 /// "ok", "aborted: stop signal", or "degraded: ..." when a side has no live agent, a controller
-/// was dead or paused at the end, the path was not followed (cross-track error above the
+/// was dead or paused at the end, an agent's fault went undetected or a healthy one was
+/// isolated (with detection on), the path was not followed (cross-track error above the
 /// tolerance), or the run ended more than degraded_band_pct off its reference speed (a run that
 /// never reached its speed, or that ended for a lost speed, is not judged on it).
 std::string run_status(const RunEnd& e, double degraded_band_pct);

@@ -9,9 +9,13 @@
 namespace maptr::sim {
 
 PlantCore::PlantCore(const PlantCoreConfig& c)
-    : c_(c), integ_(c.robot), u_(c.robot.per_side()), path_(c.trajectory) {
+    : c_(c), integ_(c.robot), u_(c.robot.per_side()), path_(c.trajectory), book_(c.robot.per_side(), c.agent_faults) {
   x_[model::kChargeL] = x_[model::kChargeR] = c.initial_discharge_mAh;
-  for (int side = 0; side < 2; ++side) active_time_[side].assign(c.robot.per_side(), 0.0);
+  for (int side = 0; side < 2; ++side) {
+    active_time_[side].assign(c.robot.per_side(), 0.0);
+    winding_[side].assign(c.robot.per_side(), model::Winding{});
+    measured_[side].assign(c.robot.per_side(), DriveMeasurement{});
+  }
 }
 
 double PlantCore::drawn_mAh(int side) const {
@@ -31,14 +35,31 @@ double PlantCore::phidot(int side) const {
 double PlantCore::rms_speed_error_pct() const { return err_n_ ? std::sqrt(err_sq_sum_ / err_n_) : 0.0; }
 
 void PlantCore::hold_inputs(const std::vector<AgentApplied>* sides[2], SideSum sum[2]) {
+  book_.apply(tick_, t());
   for (int s = 0; s < 2; ++s) {
     auto& volts = s == 0 ? u_.voltage_L : u_.voltage_R;
     auto& act = s == 0 ? u_.active_L : u_.active_R;
+    auto& faults = s == 0 ? u_.fault_L : u_.fault_R;
+    const auto& motor = book_.motor(s);
+    if (book_.any_motor_fault(s))
+      faults = motor;
+    else
+      faults.clear();
+    const double battery = battery_V(s), floor = c_.robot.driver.floor_V(battery);
     for (std::size_t j = 0; j < act.size(); ++j) {
       const AgentApplied& a = (*sides[s])[j];
-      act[j] = a.replied && a.drives ? 1 : 0;
-      volts[j] = act[j] ? a.voltage_V : 0.0;
-      if (act[j]) {
+      const bool asked = a.replied && a.drives;
+      // What the winding sees: the agent's voltage, unless its fault or its group says otherwise.
+      const model::Winding w = model::winding(motor[j], asked, a.voltage_V, a.disconnected, floor, battery);
+      winding_[s][j] = w;
+      act[j] = w.conducts ? 1 : 0;
+      volts[j] = w.conducts ? w.voltage_V : 0.0;
+      DriveMeasurement& m = measured_[s][j];
+      m.drove = asked;
+      m.drive_V = asked ? a.voltage_V : 0.0;
+      m.reported = a.replied;
+      m.reported_A = a.replied ? a.current_A : 0.0;
+      if (asked) {
         sum[s].v += a.voltage_V;
         sum[s].i += a.current_A;
         sum[s].eff += a.efficiency;
@@ -47,6 +68,16 @@ void PlantCore::hold_inputs(const std::vector<AgentApplied>* sides[2], SideSum s
     }
   }
   for (int s = 0; s < 2; ++s) active_V_[s] = sum[s].n ? sum[s].v / sum[s].n : 0.0;
+}
+
+void PlantCore::measure() {
+  for (int s = 0; s < 2; ++s) {
+    const double w = phidot(s);
+    const auto& motor = book_.motor(s);
+    for (std::size_t j = 0; j < measured_[s].size(); ++j)
+      measured_[s][j].measured_A =
+          model::winding_current(c_.robot.motor, c_.robot.driver, motor[j], winding_[s][j], w);
+  }
 }
 
 TraceRow PlantCore::trace_row(const SideSum sum[2], double ref_L, double ref_R, int live_L,
@@ -136,6 +167,7 @@ TickRecord PlantCore::hold(const std::vector<AgentApplied>& left, const std::vec
 
 void PlantCore::integrate() {
   integ_.step(x_, u_, t(), c_.dt_s);
+  measure();
   active_sum_ += held_[0].n + held_[1].n;
   last_active_L_ = held_[0].n;
   last_active_R_ = held_[1].n;

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "control/path.hpp"
+#include "model/motor_fault.hpp"
 #include "model/params.hpp"
+#include "sim/fault_book.hpp"
 #include "sim/integrator.hpp"
 #include "sim/speed_band.hpp"
 
@@ -22,6 +24,17 @@ struct AgentApplied {
   double voltage_V = 0.0;
   double current_A = 0.0;
   double efficiency = 0.0;
+  bool disconnected = false;  ///< its group isolated it: its motor's supply is open
+};
+
+/// What the drive measured of one agent (the groups' fault detection, control/diagnosis.hpp):
+/// over the tick last integrated [t_{k-1}, t_k] and at its end t_k.
+struct DriveMeasurement {
+  bool drove = false;       ///< it replied driving
+  double drive_V = 0.0;     ///< the voltage it said it applied (0 when not driving), V
+  double measured_A = 0.0;  ///< current in its motor's lead at t_k, A
+  bool reported = false;    ///< it replied
+  double reported_A = 0.0;  ///< the current it reported (at t_{k-1}), A
 };
 
 /// What the plant core needs of a scenario (the node builds it).
@@ -40,6 +53,8 @@ struct PlantCoreConfig {
   control::Trajectory trajectory;
   /// The robot is measured against the path up to the reference's length plus this, m.
   double path_search_ahead_m = 2.0;
+  /// The agents' own faults and clears (scenario actions fault and clear), at their ticks.
+  std::vector<AgentFaultEvent> agent_faults;
 };
 
 /// Trace row k: the state at t_k and what was applied over [t_k, t_k+1]. Per-side arrays are
@@ -114,6 +129,15 @@ class PlantCore {
   int last_active(int side) const { return side == 0 ? last_active_L_ : last_active_R_; }
   /// How the robot has followed its path so far (the ticks held).
   const control::TrackingStats& tracking() const { return tracking_; }
+  /// The agents' faults: in force, and the record of each.
+  const FaultBook& faults() const { return book_; }
+  /// A group's announced flags (its status of tick k, taken before integrate()): the flagged
+  /// agents' motors are disconnected from then on.
+  void on_group_flags(int side, const std::vector<uint8_t>& flags, const char* const* names, int n_names) {
+    book_.on_flags(side, flags, t(), c_.dt_s, names, n_names);
+  }
+  /// What the drive measured of each agent of a side over the tick last integrated.
+  const std::vector<DriveMeasurement>& measurements(int side) const { return measured_[side]; }
 
  private:
   struct SideSum {
@@ -146,6 +170,10 @@ class PlantCore {
   control::TrackingStats tracking_;
   control::PathRef path_ref_;  ///< the reference at the tick held
   control::Projection path_at_;  ///< the robot against its path at the tick held
+  FaultBook book_;
+  std::vector<model::Winding> winding_[2];  ///< each motor's winding over the tick held
+  std::vector<DriveMeasurement> measured_[2];
+  void measure();
 };
 
 }  // namespace maptr::sim

@@ -28,14 +28,45 @@ namespace {
 constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitDegraded = 3;
 
 
+/// "--fault L3:torque=0.5@20" and the like: the option's text first in every error.
+[[noreturn]] void bad_option(const std::string& action, const std::string& spec, const std::string& why) {
+  throw ScenarioError("--" + action + " " + spec.substr(0, 80) + ": " + why);
+}
+
+/// Reads --fault's TARGET:MODE[=VALUE] into f (the time is read by add_faults).
+void read_fault_mode(const std::string& spec, const std::string& head, config::FaultSpec& f) {
+  const auto colon = head.find(':');
+  if (colon == std::string::npos)
+    bad_option("fault", spec, "expected TARGET:MODE[=VALUE]@SECONDS, e.g. L3:open@20 or L3:torque=0.5@20");
+  f.target = head.substr(0, colon);
+  const std::string mode = head.substr(colon + 1);
+  const auto eq = mode.find('=');
+  f.mode = mode.substr(0, eq);
+  if (eq == std::string::npos) return;
+  const std::string value = mode.substr(eq + 1);
+  std::size_t used = 0;
+  try {
+    f.value = std::stod(value, &used);
+  } catch (...) {
+    used = 0;
+  }
+  if (used == 0 || used != value.size())
+    bad_option("fault", spec, "faults[].value = " + value.substr(0, 80) + ": must be a number");
+}
+
 void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::string& action) {
   for (const auto& spec : specs) {
-    const auto at = spec.find('@');
+    const auto at = spec.rfind('@');
     if (at == std::string::npos)
-      throw ScenarioError("--" + action + " " + spec + ": expected TARGET@SECONDS, e.g. L3@120");
+      bad_option(action, spec,
+                 action == "fault" ? "expected TARGET:MODE[=VALUE]@SECONDS, e.g. L3:torque=0.5@20"
+                                   : "expected TARGET@SECONDS, e.g. L3@120");
     config::FaultSpec f;
-    f.target = spec.substr(0, at);
     f.action = action;
+    if (action == "fault")
+      read_fault_mode(spec, spec.substr(0, at), f);
+    else
+      f.target = spec.substr(0, at);
     const std::string time = spec.substr(at + 1);
     std::size_t used = 0;
     try {
@@ -44,11 +75,20 @@ void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::s
       used = 0;
     }
     if (used == 0 || used != time.size() || !std::isfinite(f.at_s) || f.at_s < 0)
-      throw ScenarioError("--" + action + " " + spec.substr(0, 80) + ": faults[].at_s = " + time.substr(0, 80) +
-                          ": must be a finite number of seconds, at least 0");
+      bad_option(action, spec, "faults[].at_s = " + time.substr(0, 80) + ": must be a finite number of seconds, at least 0");
     if ((action == "pause" || action == "resume") && f.target == "plant")
-      throw ScenarioError("--" + action + " " + spec.substr(0, 80) +
-                          ": faults[].target = plant: the plant cannot be paused: it is the fleet's clock");
+      bad_option(action, spec, "faults[].target = plant: the plant cannot be paused: it is the fleet's clock");
+    int side = 0, index = 0;
+    if (config::is_agent_fault_action(action) &&
+        (!config::parse_agent_name(f.target, side, index) || index >= s.robot.per_side()))
+      bad_option(action, spec, "faults[].target = " + f.target.substr(0, 80) + ": --" + action +
+                                   " needs an agent of the robot (L0.." + config::agent_name(0, s.robot.per_side() - 1) +
+                                   ", R0..): only a wheel's motor or its agent's software fails this way");
+    std::string field;
+    const std::string why = config::fault_mode_problem(f, s.robot, field);
+    if (!why.empty())
+      bad_option(action, spec, "faults[]." + field + " = " +
+                                   (field == "mode" ? f.mode.substr(0, 80) : model::param_value(f.value)) + ": " + why);
     s.faults.push_back(f);
   }
 }
@@ -127,6 +167,10 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--kill-host", a.kill_hosts, "kill every process of a host and cut its link, e.g. h2@20");
   run->add_option("--partition", a.partitions, "cut a host's link at a simulated time, e.g. h2@20");
   run->add_option("--heal", a.heals, "link a cut host again, e.g. h2@30");
+  run->add_option("--fault", a.agent_faults,
+                  "break an agent that runs on, e.g. L3:open@20, L3:torque=0.5@20, L3:stuck=12@20, "
+                  "R1:sensor=5@30, R1:erratic=2@30, L0:liar@10 (modes: maptr fields; repeatable)");
+  run->add_option("--clear", a.clears, "end an agent's fault, e.g. L3@40 (repeatable)");
   run->add_option("--stall-timeout", a.stall_timeout_s,
                   "end the run as stalled after this many wall seconds without a tick (default 180)")
       ->check(CLI::Range(1.0, 86400.0));
@@ -167,6 +211,8 @@ Scenario scenario_from(const RunArgs& a) {
   add_faults(s, a.kill_hosts, "kill-host");
   add_faults(s, a.partitions, "partition");
   add_faults(s, a.heals, "heal");
+  add_faults(s, a.agent_faults, "fault");
+  add_faults(s, a.clears, "clear");
   if (const auto i = config::unmatched_resume(s.faults); i && *i >= from_file) {
     const config::FaultSpec& f = s.faults[*i];
     std::ostringstream at;

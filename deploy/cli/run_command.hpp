@@ -20,6 +20,7 @@ struct RunArgs {
   int domain = -1;
   std::vector<std::string> kills, restarts, pauses, resumes, external;
   std::vector<std::string> kill_hosts, partitions, heals, placement;
+  std::vector<std::string> agent_faults, clears;  ///< --fault L3:open@20, --clear L3@40
   int hosts = 0;  ///< --hosts N (0: the scenario's)
   long long chaos = -1;
   std::string transport = "auto";

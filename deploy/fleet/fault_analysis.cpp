@@ -50,7 +50,9 @@ void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, cons
     auto concerns = [&](const std::string& name) {
       return name == target || std::find(on_host.begin(), on_host.end(), name) != on_host.end();
     };
-    // Detection: the first membership event of the target at or after the fault.
+    // Detection: the first membership event of the target at or after the fault. An agent's own
+    // fault (action fault) is detected by its group: the plant recorded when.
+    if (action != "fault") {
     f["detected_s"] = nullptr;
     f["detect_wall_ms"] = nullptr;
     for (const auto& e : events) {
@@ -59,6 +61,7 @@ void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, cons
       f["detected_s"] = e.value("t_s", 0.0);
       if (f.contains("wall_ms")) f["detect_wall_ms"] = e.value("wall_ms", 0.0) - f.value("wall_ms", 0.0);
       break;
+    }
     }
     // Recovery window: until the next fault (or the end of the run).
     double until = t_end + 1.0;

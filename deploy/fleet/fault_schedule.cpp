@@ -87,6 +87,13 @@ FaultAction decide_fault(const config::FaultSpec& f, const TargetState& s) {
   return {FaultAction::kSkip, "target not in a state for this action"};
 }
 
+std::vector<config::FaultSpec> launcher_faults(const std::vector<config::FaultSpec>& faults) {
+  std::vector<config::FaultSpec> out;
+  for (const auto& f : faults)
+    if (!config::is_agent_fault_action(f.action)) out.push_back(f);
+  return out;
+}
+
 FaultSchedule::FaultSchedule(std::vector<config::FaultSpec> faults) : faults_(std::move(faults)) {
   std::stable_sort(faults_.begin(), faults_.end(), [](auto& a, auto& b) { return a.at_s < b.at_s; });
 }

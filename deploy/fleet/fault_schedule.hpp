@@ -54,6 +54,10 @@ struct FaultAction {
 /// launcher restarts it by itself); external processes are left alone.
 FaultAction decide_fault(const config::FaultSpec& f, const TargetState& s);
 
+/// The faults the launcher applies: all but the agents' own (fault, clear), which the plant and
+/// the agents apply at their tick and the plant records.
+std::vector<config::FaultSpec> launcher_faults(const std::vector<config::FaultSpec>& faults);
+
 /// The scheduled faults of a run, in time order, and the record of every fault.
 class FaultSchedule {
  public:

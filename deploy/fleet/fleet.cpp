@@ -44,7 +44,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
       cfg_path_(o.run_dir + "/scenario.yaml"),
       ids_(fleet_participants(o.scenario.robot.agents),
            (comm::rtps_max_participant_id(o.domain) + 1) / fleet_participants(o.scenario.robot.agents)),
-      schedule_(o.scenario.faults),
+      schedule_(launcher_faults(o.scenario.faults)),
       stall_(o.stall_s > 0.0 ? o.stall_s : cfg.stall_s) {
   const int agents = sc_.robot.agents;
   std::filesystem::create_directories(o.run_dir + "/logs");

@@ -150,6 +150,18 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["transport"] = r.transport;
   s["agent_start"] = r.agent_start;
   nlohmann::json failures = r.failures;
+  // The agents' own faults, which the plant applied and recorded, among the others in time order.
+  const nlohmann::json agent_faults = plant.value("agent_faults", nlohmann::json::object());
+  for (const auto& f : agent_faults.value("faults", nlohmann::json::array())) {
+    nlohmann::json e = f;
+    e["action"] = "fault";
+    e["at_s"] = f.value("injected_s", 0.0);
+    e["origin"] = "scheduled";
+    e["energy_penalty_J"] = nullptr;  // against a fault-free twin: maptr experiment faults
+    failures.push_back(e);
+  }
+  std::stable_sort(failures.begin(), failures.end(),
+                   [](const nlohmann::json& a, const nlohmann::json& b) { return a.value("at_s", 0.0) < b.value("at_s", 0.0); });
   const nlohmann::json plant_events = plant.value("membership_events", nlohmann::json::array());
   analyse_faults(failures, plant_events, run_dir + "/trace.csv", sc.robot.wheel_radius_m);
   s["failures"] = failures;
