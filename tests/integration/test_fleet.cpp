@@ -245,6 +245,10 @@ TEST(Fleet, BadScenariosAreRefusedBeforeAnyProcessStarts) {
       {"agents: 16\nagents: 32\n", "agents", "32"},
       {"control:\n  stop_decel_mps2: .inf\n", "control.stop_decel_mps2", ".inf"},
       {"name: ../outside\n", "name", "../outside"},
+      {"faults:\n  - {target: L3, action: fault, mode: melted, at_s: 20}\n", "faults[0].mode", "melted"},
+      {"faults:\n  - {target: central, action: fault, mode: open, at_s: 20}\n", "faults[0].target", "central"},
+      {"faults:\n  - {target: L3, action: fault, mode: torque, value: -1, at_s: 20}\n", "faults[0].value", "-1"},
+      {"faults:\n  - {target: L3, action: kill, mode: open, at_s: 20}\n", "faults[0].mode", "open"},
       {nullptr, "(file)", "not a regular file"},  // a directory given as the scenario
   };
   int i = 0;
@@ -280,6 +284,13 @@ TEST(Fleet, BadCommandLineValuesAreRefusedLikeScenarioFields) {
       {{"--kill", "L3@nan"}, "at_s", "nan"},
       {{"--resume", "L3@5"}, "action", "resume"},
       {{"--pause", "plant@5"}, "target", "plant"},
+      {{"--fault", "L3:torque=-1@20"}, "faults[].value", "-1"},
+      {{"--fault", "L3:melted@20"}, "faults[].mode", "melted"},
+      {{"--fault", "central:open@20"}, "faults[].target", "central"},
+      {{"--fault", "L3:stuck=99@20"}, "faults[].value", "99"},
+      {{"--fault", "L3:open=2@20"}, "faults[].value", "2"},
+      {{"--fault", "L3@20"}, "TARGET:MODE", "L3@20"},
+      {{"--clear", "group-L@20"}, "faults[].target", "group-L"},
   };
   int i = 0;
   for (const auto& c : cases) {
