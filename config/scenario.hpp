@@ -61,6 +61,15 @@ struct FaultSpec {
   double at_s = 0.0;   ///< simulated time, s
   std::string mode;    ///< action fault: open, short, torque, resistance, stuck (motor); sensor, erratic, liar (agent)
   double value = 0.0;  ///< action fault: torque/resistance F, stuck V [V], sensor B [rad/s], erratic S [V]
+
+  /// A fault without mode: a process's or a host's (kill, restart, pause, ...).
+  static FaultSpec of(std::string target, std::string action, double at_s) {
+    FaultSpec f;
+    f.target = std::move(target);
+    f.action = std::move(action);
+    f.at_s = at_s;
+    return f;
+  }
 };
 
 /// True for the actions the fleet's processes apply by themselves at their tick (fault, clear):

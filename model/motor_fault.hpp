@@ -12,7 +12,7 @@
 //   stuck=V         the driver applies V volts (clamped to its range) whatever it is told
 // A motor its group disconnected (its driver's supply opened) is an open circuit whatever its
 // fault. Faults of the agent's software (a wrong speed sensor, erratic or lying replies) are
-// not here: the agent misbehaves with them (agent/agent_faults.hpp).
+// not here: the agent misbehaves with them (agent/misbehaviour.hpp).
 #include <cstdint>
 #include <string>
 

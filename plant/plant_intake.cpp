@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <fstream>
 #include <thread>
@@ -227,7 +228,9 @@ int PlantLoop::report(bool stopped) {
   e.cross_track_max_m = core_.tracking().cross_track_max();
   e.cross_track_max_t_s = core_.tracking().cross_track_max_t();
   e.path_tolerance_m = sc_.control.path_tolerance_m;
-  if (sc_.control.fault_detection) e.fault_problems = fault_problems(core_.faults());
+  if (sc_.control.fault_detection)
+    e.fault_problems =
+        fault_problems(core_.faults(), 2 * std::max(1LL, std::llround(sc_.control.fault_persistence_s / sc_.dt())) + 2);
   ReportInputs in;
   in.status = run_status(e, c_.degraded_band_pct);
   in.end_reason = end_reason_;

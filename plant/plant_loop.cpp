@@ -43,6 +43,9 @@ sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConf
     pc.agent_faults.push_back(
         {config::first_tick_at(f.at_s, sc.dt()), side, index, f.action == "clear", f.mode, f.value});
   }
+  // A detection needs the persistence time of residuals: one that ends within twice that after a
+  // clear is the cleared fault's.
+  pc.fault_grace_s = 2.0 * sc.control.fault_persistence_s + 2.0 * sc.dt();
   return pc;
 }
 

@@ -73,11 +73,11 @@ std::string end_reason(bool speed_lost, double stop_below_speed_pct, double hold
          hold.str() + " s at t=" + std::to_string(t_s) + " s";
 }
 
-std::vector<std::string> fault_problems(const sim::FaultBook& book) {
+std::vector<std::string> fault_problems(const sim::FaultBook& book, long long exposed_ticks_needed) {
   std::vector<std::string> out;
   char line[200];
   for (const auto& r : book.records()) {
-    if (r.detected_s) continue;
+    if (r.detected_s || r.exposed_ticks <= exposed_ticks_needed) continue;
     std::snprintf(line, sizeof(line), "fault %s%s on %s at %.2f s not detected", r.mode.c_str(),
                   r.value != 0.0 ? ("=" + model::param_value(r.value)).c_str() : "", r.target.c_str(), r.injected_s);
     out.push_back(line);
@@ -103,6 +103,7 @@ nlohmann::json agent_faults_json(const sim::FaultBook& book) {
                       {"isolated_s", opt(r.isolated_s)},
                       {"diagnosed_mode", r.diagnosed_mode.empty() ? nlohmann::json() : nlohmann::json(r.diagnosed_mode)},
                       {"relapses", r.relapses},
+                      {"exposed_ticks", r.exposed_ticks},
                       {"cleared_s", opt(r.cleared_s)},
                       {"readmitted_s", opt(r.readmitted_s)}});
   nlohmann::json events = nlohmann::json::array();

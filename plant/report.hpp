@@ -52,7 +52,10 @@ struct RunEnd {
 /// What the fault record says went wrong: each injected fault its group never flagged ("fault
 /// sensor=5 on L3 at 20.00 s not detected") and each flag raised on an agent with no fault in
 /// force ("L3 isolated at 12.30 s as short with no fault in force (a false detection)").
-std::vector<std::string> fault_problems(const sim::FaultBook& book);
+/// A fault counts as undetected only once it acted on the drive for more than
+/// `exposed_ticks_needed` ticks (twice the persistence time: a fault on an agent that never
+/// drove while it was in force cannot be seen, and did no harm).
+std::vector<std::string> fault_problems(const sim::FaultBook& book, long long exposed_ticks_needed);
 
 /// "ok", "aborted: stop signal", or "degraded: ..." when a side has no live agent, a controller
 /// was dead or paused at the end, an agent's fault went undetected or a healthy one was

@@ -8,8 +8,8 @@ namespace {
 std::string agent(int side, int index) { return (side == 0 ? "L" : "R") + std::to_string(index); }
 }  // namespace
 
-FaultBook::FaultBook(int per_side, std::vector<AgentFaultEvent> events)
-    : per_side_(per_side), events_in_(std::move(events)) {
+FaultBook::FaultBook(int per_side, std::vector<AgentFaultEvent> events, double grace_s)
+    : per_side_(per_side), grace_s_(grace_s), events_in_(std::move(events)) {
   std::stable_sort(events_in_.begin(), events_in_.end(), [](auto& a, auto& b) { return a.tick < b.tick; });
   for (int s = 0; s < 2; ++s) {
     motor_[s].assign(static_cast<std::size_t>(per_side), model::MotorFault{});
@@ -51,6 +51,11 @@ bool FaultBook::disconnected(int side, int index) const {
   return flags_[side][static_cast<std::size_t>(index)] != 0;
 }
 
+void FaultBook::exposed(int side, int index) {
+  const int open = open_[side][static_cast<std::size_t>(index)];
+  if (open >= 0) ++records_[static_cast<std::size_t>(open)].exposed_ticks;
+}
+
 void FaultBook::on_flags(int side, const std::vector<uint8_t>& flags, double t_s, double dt_s,
                          const char* const* names, int n_names) {
   if (flags.size() != flags_[side].size()) return;  // a group without detection: none flagged
@@ -62,7 +67,12 @@ void FaultBook::on_flags(int side, const std::vector<uint8_t>& flags, double t_s
     ev.t_s = t_s;
     ev.target = agent(side, static_cast<int>(j));
     ev.diagnosed = raised && flags[j] < n_names ? names[flags[j]] : "";
-    const int open = open_[side][j], last = last_[side][j];
+    int open = open_[side][j];
+    const int last = last_[side][j];
+    if (raised && open < 0 && last >= 0) {  // just after a clear: still that fault's
+      const auto& r = records_[static_cast<std::size_t>(last)];
+      if (r.cleared_s && t_s - *r.cleared_s <= grace_s_ + 1e-9) open = last;
+    }
     if (raised && open < 0) {
       ev.false_detection = true;
       ++false_;

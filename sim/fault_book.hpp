@@ -33,6 +33,9 @@ struct AgentFaultRecord {
   int relapses = 0;                  ///< flagged again after a probation
   std::optional<double> cleared_s;
   std::optional<double> readmitted_s;  ///< let back after its (last) probation
+  /// Ticks in which the fault acted on the drive (its agent drove, or its winding carried a
+  /// current it was not asked for): a fault that never acted cannot be seen, and did no harm.
+  long long exposed_ticks = 0;
 };
 
 /// A change of a group's flag on one agent.
@@ -45,7 +48,8 @@ struct DiagnosisEvent {
 
 class FaultBook {
  public:
-  FaultBook(int per_side, std::vector<AgentFaultEvent> events);
+  /// A flag raised within grace_s after a fault's clear is that fault's (a late detection).
+  FaultBook(int per_side, std::vector<AgentFaultEvent> events, double grace_s = 0.0);
 
   /// Applies the events of tick k (time t_s).
   void apply(long long k, double t_s);
@@ -58,6 +62,8 @@ class FaultBook {
   void on_flags(int side, const std::vector<uint8_t>& flags, double t_s, double dt_s,
                 const char* const* names, int n_names);
   bool disconnected(int side, int index) const;
+  /// The fault in force on agent `index` of `side` acted on the drive over the tick held.
+  void exposed(int side, int index);
 
   const std::vector<AgentFaultRecord>& records() const { return records_; }
   const std::vector<DiagnosisEvent>& events() const { return events_; }
@@ -65,6 +71,7 @@ class FaultBook {
 
  private:
   int per_side_;
+  double grace_s_;
   std::vector<AgentFaultEvent> events_in_;
   std::size_t next_ = 0;
   std::vector<model::MotorFault> motor_[2];

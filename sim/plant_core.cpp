@@ -9,7 +9,7 @@
 namespace maptr::sim {
 
 PlantCore::PlantCore(const PlantCoreConfig& c)
-    : c_(c), integ_(c.robot), u_(c.robot.per_side()), path_(c.trajectory), book_(c.robot.per_side(), c.agent_faults) {
+    : c_(c), integ_(c.robot), u_(c.robot.per_side()), path_(c.trajectory), book_(c.robot.per_side(), c.agent_faults, c.fault_grace_s) {
   x_[model::kChargeL] = x_[model::kChargeR] = c.initial_discharge_mAh;
   for (int side = 0; side < 2; ++side) {
     active_time_[side].assign(c.robot.per_side(), 0.0);
@@ -74,9 +74,12 @@ void PlantCore::measure() {
   for (int s = 0; s < 2; ++s) {
     const double w = phidot(s);
     const auto& motor = book_.motor(s);
-    for (std::size_t j = 0; j < measured_[s].size(); ++j)
-      measured_[s][j].measured_A =
-          model::winding_current(c_.robot.motor, c_.robot.driver, motor[j], winding_[s][j], w);
+    for (std::size_t j = 0; j < measured_[s].size(); ++j) {
+      DriveMeasurement& m = measured_[s][j];
+      m.measured_A = model::winding_current(c_.robot.motor, c_.robot.driver, motor[j], winding_[s][j], w);
+      if ((m.drove || m.measured_A != 0.0) && !book_.disconnected(s, static_cast<int>(j)))
+        book_.exposed(s, static_cast<int>(j));
+    }
   }
 }
 

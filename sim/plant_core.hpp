@@ -55,6 +55,8 @@ struct PlantCoreConfig {
   double path_search_ahead_m = 2.0;
   /// The agents' own faults and clears (scenario actions fault and clear), at their ticks.
   std::vector<AgentFaultEvent> agent_faults;
+  /// A group's flag this long after a clear still belongs to the cleared fault, s.
+  double fault_grace_s = 0.0;
 };
 
 /// Trace row k: the state at t_k and what was applied over [t_k, t_k+1]. Per-side arrays are

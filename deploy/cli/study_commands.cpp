@@ -16,13 +16,13 @@ constexpr int kTickBenchAgents = 16;
 }  // namespace
 
 CLI::App* add_experiment_command(CLI::App& app, ExperimentArgs& a) {
-  auto* c = app.add_subcommand("experiment", "run one of the paper's experiments (or the project's own: failures, turns) on real fleets");
+  auto* c = app.add_subcommand("experiment", "run one of the paper's experiments (or the project's own: failures, turns, faults) on real fleets");
   c->add_option("name", a.o.name, "experiment")->required()->check(CLI::IsMember(experiment_names()));
   c->add_flag("--quick", a.o.quick, "short variant (what the test suite runs)");
   c->add_option("--out", a.o.out, "output folder (default runs/<date>-experiment-<name>)");
   c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
       ->check(CLI::Range(0, kMaxDomain));
-  c->add_option("--tick-hz", a.o.tick_hz, "tick rate, Hz (default 100 for failures and turns, 20 for the others)")
+  c->add_option("--tick-hz", a.o.tick_hz, "tick rate, Hz (default 100 for failures, turns and faults, 20 for the others)")
       ->check(CLI::Range(kMinTickHz, kMaxTickHz));
   return c;
 }

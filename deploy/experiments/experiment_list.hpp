@@ -14,6 +14,7 @@ int exp_battery(Experiment& e);    ///< NO vs EC until the speed can no longer b
 int exp_wear(Experiment& e);       ///< Level-3 allocation: transitions, idle time, wear
 int exp_failures(Experiment& e);   ///< kill 0, 1, 2, ... agents per side
 int exp_turns(Experiment& e);      ///< tightest radius against speed; NO vs EC on the warehouse loop
+int exp_faults(Experiment& e);     ///< every agent-fault mode, detection on and off, against the crash
 
 /// Runs NO (every agent) and EC on the same scenario; ids and labels get -no/-ec, NO/EC.
 struct RunPair {

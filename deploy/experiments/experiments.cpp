@@ -17,8 +17,8 @@
 namespace maptr::deploy {
 
 namespace {
-/// The tick rates of default_tick_hz(): the scenarios' own rate for failures (detection times
-/// are counted in ticks) and turns (the loop's wheel gains are tuned at it).
+/// The tick rates of default_tick_hz(): the scenarios' own rate for failures and faults
+/// (detection times are counted in ticks) and turns (the loop's wheel gains are tuned at it).
 constexpr double kScenarioTickHz = 100.0, kMissionTickHz = 20.0;
 
 using Body = int (*)(Experiment&);
@@ -26,7 +26,8 @@ const std::map<std::string, Body>& bodies() {
   static const std::map<std::string, Body> m = {{"table-pow", exp_table_pow}, {"weights", exp_weights},
                                                 {"voltages", exp_voltages},   {"agents", exp_agents},
                                                 {"battery", exp_battery},     {"wear", exp_wear},
-                                                {"failures", exp_failures},   {"turns", exp_turns}};
+                                                {"failures", exp_failures},   {"turns", exp_turns},
+                                                {"faults", exp_faults}};
   return m;
 }
 
@@ -56,11 +57,11 @@ nlohmann::json active_end_json(const Run& r) {
 }
 
 double default_tick_hz(const std::string& name) {
-  return name == "failures" || name == "turns" ? kScenarioTickHz : kMissionTickHz;
+  return name == "failures" || name == "turns" || name == "faults" ? kScenarioTickHz : kMissionTickHz;
 }
 
 std::vector<std::string> experiment_names() {
-  return {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures", "turns"};
+  return {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures", "turns", "faults"};
 }
 
 int run_experiment(const ExperimentOptions& o) {

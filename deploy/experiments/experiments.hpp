@@ -7,7 +7,7 @@
 namespace maptr::deploy {
 
 struct ExperimentOptions {
-  std::string name;        ///< table-pow | weights | voltages | agents | battery | wear | failures | turns
+  std::string name;        ///< table-pow | weights | voltages | agents | battery | wear | failures | turns | faults
   bool quick = false;      ///< the short variant used by the test suite
   std::string out;         ///< output folder (created)
   std::string bin_dir;     ///< where maptr_plant & co. are
@@ -17,7 +17,7 @@ struct ExperimentOptions {
 };
 
 /// The tick rate an experiment runs at unless told otherwise: 100 Hz (the scenario default) for
-/// failures and turns, whose detection times are counted in ticks; 20 Hz for the long missions and large
+/// failures, faults and turns, whose detection times are counted in ticks; 20 Hz for the long missions and large
 /// fleets (see docs/results/RESULTS.md, "Tick rate").
 double default_tick_hz(const std::string& name);
 

@@ -26,9 +26,8 @@ Conditions conditions(bool q) {
   return c;
 }
 
-/// Kill order per side: the agents driving at the kill time in the fault-free run (which the
-/// faulty runs repeat exactly up to the kill: the lock-step is deterministic), then the others.
-using KillOrder = std::vector<int>[2];
+/// Kill order per side: the agents driving at the kill time in the fault-free run, then the others.
+using KillOrder = DrivingOrder;
 
 config::Scenario scenario(const Experiment& e, const Conditions& c, const KillOrder& order, int k) {
   config::Scenario s = e.base();
@@ -39,7 +38,7 @@ config::Scenario scenario(const Experiment& e, const Conditions& c, const KillOr
   s.trace_every = 10;
   for (int side = 0; side < 2; ++side)
     for (int j = 0; j < k; ++j)
-      s.faults.push_back(config::FaultSpec{config::agent_name(side, order[side][j]), "kill", c.kill_at});
+      s.faults.push_back(config::FaultSpec::of(config::agent_name(side, order[side][j]), "kill", c.kill_at));
   return s;
 }
 
@@ -58,22 +57,6 @@ std::vector<report::Column> columns() {
           {"energy_kJ", "energy kJ", 3},
           {"eff_cruise", "eff (2nd half)", 3},
           {"status", "status", -1}};
-}
-
-/// The fault-free run decides the kill order: the agents driving at the kill time first.
-void order_from(const Run& r, double kill_at, KillOrder& order) {
-  const auto iv = driving_intervals(r.dir + "/assignments.csv", kPerSide, r.sim_s());
-  for (int side = 0; side < 2; ++side) {
-    std::vector<int> on, off;
-    for (int j = 0; j < kPerSide; ++j) {
-      const auto& a = iv[side * kPerSide + j];
-      const bool driving = std::any_of(a.begin(), a.end(),
-                                       [&](const Interval& x) { return x.t0 <= kill_at && kill_at < x.t1; });
-      (driving ? on : off).push_back(j);
-    }
-    order[side] = on;
-    order[side].insert(order[side].end(), off.begin(), off.end());
-  }
 }
 
 double max_or(double acc, double v) {
@@ -184,7 +167,7 @@ int exp_failures(Experiment& e) {
     const int k = ks[i];
     const Run r =
         e.run("kill-" + std::to_string(k), std::to_string(k) + " killed per side", scenario(e, c, order, k));
-    if (k == 0 && !r.aborted()) order_from(r, c.kill_at, order);
+    if (k == 0 && !r.aborted()) order = driving_first(r, c.kill_at, kPerSide);
     if (k == 0) tolerance = tolerance_of(r, q ? -1 : kPerSide - 1);
     if (k == 0 && !q) {  // up to two kills beyond the tolerance, at most every agent of a side
       const int kmax = std::min(kPerSide, tolerance + 2);

@@ -186,4 +186,20 @@ std::vector<std::vector<Interval>> driving_intervals(const std::string& path, in
   return out;
 }
 
+DrivingOrder driving_first(const Run& r, double at, int per_side) {
+  const auto iv = driving_intervals(r.dir + "/assignments.csv", per_side, r.sim_s());
+  DrivingOrder order;
+  for (int side = 0; side < 2; ++side) {
+    std::vector<int> on, off;
+    for (int j = 0; j < per_side; ++j) {
+      const auto& a = iv[static_cast<std::size_t>(side * per_side + j)];
+      const bool driving = std::any_of(a.begin(), a.end(), [&](const Interval& x) { return x.t0 <= at && at < x.t1; });
+      (driving ? on : off).push_back(j);
+    }
+    order[static_cast<std::size_t>(side)] = on;
+    order[static_cast<std::size_t>(side)].insert(order[static_cast<std::size_t>(side)].end(), off.begin(), off.end());
+  }
+  return order;
+}
+
 }  // namespace maptr::deploy

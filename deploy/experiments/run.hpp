@@ -1,6 +1,7 @@
 #pragma once
 // One fleet run of an experiment and the figures derived from what it wrote (summary.json,
 // trace.csv, assignments.csv).
+#include <array>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -63,5 +64,11 @@ struct Interval {
 
 /// Per agent (L0.., then R0..), the intervals during which it drove, from assignments.csv.
 std::vector<std::vector<Interval>> driving_intervals(const std::string& path, int per_side, double t_end);
+
+/// Per side, the agents' indices: those driving at time `at` in run r first, then the others
+/// (each group by index). A run repeated with faults from `at` on is identical up to then (the
+/// lock-step is deterministic): faults on the first k hit driving agents first.
+using DrivingOrder = std::array<std::vector<int>, 2>;
+DrivingOrder driving_first(const Run& r, double at, int per_side);
 
 }  // namespace maptr::deploy

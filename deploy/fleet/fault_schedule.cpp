@@ -46,12 +46,12 @@ std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scena
     if (overlaps(done, target, at, again)) continue;
     done.push_back({target, at, again});
     if (pause) {
-      out.push_back({target, "pause", at});
-      out.push_back({target, "resume", again});
+      out.push_back(config::FaultSpec::of(target, "pause", at));
+      out.push_back(config::FaultSpec::of(target, "resume", again));
     } else {
-      out.push_back({target, "kill", at});
+      out.push_back(config::FaultSpec::of(target, "kill", at));
       // The launcher restarts a killed discovery server by itself.
-      if (target != fleet::kDiscoveryTarget) out.push_back({target, "restart", again});
+      if (target != fleet::kDiscoveryTarget) out.push_back(config::FaultSpec::of(target, "restart", again));
     }
   }
   // On several hosts, also one partition of a host other than h0 (the plant's by default), healed.
@@ -59,8 +59,24 @@ std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scena
     std::uniform_int_distribution<int> host(1, s.hosts.count - 1);
     const std::string h = config::host_name(host(rng));
     const double at = std::round(when(rng) * 100.0) / 100.0;
-    out.push_back({h, "partition", at});
-    out.push_back({h, "heal", std::min(s.duration_s, std::round((at + back(rng)) * 100.0) / 100.0)});
+    out.push_back(config::FaultSpec::of(h, "partition", at));
+    out.push_back(config::FaultSpec::of(h, "heal", std::min(s.duration_s, std::round((at + back(rng)) * 100.0) / 100.0)));
+  }
+  std::mt19937 fault_rng(seed ^ 0x85ebca6bu);
+  const double rated = s.robot.motor.rated_voltage_V;
+  const config::FaultSpec modes[] = {{"", "fault", 0, "open", 0},      {"", "fault", 0, "short", 0},
+                                     {"", "fault", 0, "torque", 0.5},  {"", "fault", 0, "resistance", 3},
+                                     {"", "fault", 0, "stuck", rated / 2}, {"", "fault", 0, "sensor", 5},
+                                     {"", "fault", 0, "erratic", 2},   {"", "fault", 0, "liar", 0}};
+  std::uniform_int_distribution<int> agent(0, s.robot.agents - 1), mode(0, 7);
+  for (int i = 0; i < o.agent_faults; ++i) {
+    const int a = agent(fault_rng);
+    config::FaultSpec f = modes[mode(fault_rng)];
+    f.target = config::agent_name(a / s.robot.per_side(), a % s.robot.per_side());
+    f.at_s = std::round(when(fault_rng) * 100.0) / 100.0;
+    out.push_back(f);
+    out.push_back(config::FaultSpec::of(f.target, "clear",
+                                        std::min(s.duration_s, std::round((f.at_s + back(fault_rng)) * 100.0) / 100.0)));
   }
   return out;
 }

@@ -18,12 +18,16 @@ struct ChaosOptions {
   int outages = 4;  ///< outages drawn (those overlapping an earlier one of the same target are dropped)
   double pause_share = 1.0 / 3.0;  ///< share of the outages that are pauses instead of kills
   bool discovery = false;          ///< the discovery server is a target too
+  int agent_faults = 1;            ///< agents broken while they run on (a fault, cleared 2-8 s later)
 };
 
 /// Outages of agents and controllers (never the plant) at random simulated times, the same for
 /// the same seed, scenario and options: a kill restarted 2-8 s later, or a pause resumed 2-8 s
 /// later; the discovery server is only killed (the launcher restarts it). On several hosts, one
-/// host other than h0 is also cut off and healed 2-8 s later.
+/// host other than h0 is also cut off and healed 2-8 s later. Then `agent_faults` agents break
+/// while they run on, each in a mode drawn from all eight (docs/ARCHITECTURE.md "Fault
+/// detection"), and are mended 2-8 s later; drawn from a stream of their own, so that the
+/// outages stay those of a schedule without them.
 std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s,
                                               const ChaosOptions& o);
 /// The schedule of `--chaos SEED`: `faults` outages, a third of them pauses.

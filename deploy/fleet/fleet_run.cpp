@@ -217,7 +217,7 @@ void Fleet::take_commands() {
       continue;
     }
     log_.info("command: {} {}", c.action, c.target);
-    const config::FaultSpec f{c.target, c.action, clock_.state().t};
+    const config::FaultSpec f = config::FaultSpec::of(c.target, c.action, clock_.state().t);
     if (config::is_host_action(c.action))
       apply_host_fault(f, clock_.state().t);
     else

@@ -112,11 +112,11 @@ TEST(AgentFaults, AClearedFaultLetsTheAgentBackAfterItsProbation) {
 }
 
 TEST(AgentFaults, AFaultNoGroupDetectsIsNotAnOkRun) {
-  // Detection on, but a persistence longer than the run: the fault goes unseen, and the run says
+  // Detection on, but a threshold above any current: the fault goes unseen, and the run says
   // so instead of ok (exit 3, degraded).
   TempDir tmp;
   const std::string scen = tmp.path() + "/slow.yaml";
-  write_file(scen, "name: slow\nagents: 16\nduration_s: 25\ncontrol:\n  fault_persistence_s: 100\n");
+  write_file(scen, "name: slow\nagents: 16\nduration_s: 25\ncontrol:\n  fault_current_A: 1000\n");
   const std::string out = tmp.path() + "/run";
   auto r = run_cli(run_args(out, {scen, "--fault", "L3:open@20"}), out, 300);
   EXPECT_EQ(r.exit_code, 3) << r.output;

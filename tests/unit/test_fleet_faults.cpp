@@ -146,10 +146,11 @@ TEST(FleetChaos, SameSeedSameScheduleOnlyValidTargets) {
     EXPECT_GE(a[i].at_s, 5.0);
     EXPECT_LE(a[i].at_s, sc.duration_s);
   }
-  // Kill and restart, or pause and resume, in pairs, the second 2-8 s later (capped at the end).
+  // Kill and restart, pause and resume, or fault and clear, in pairs, the second 2-8 s later
+  // (capped at the end).
   for (std::size_t i = 0; i + 1 < a.size(); i += 2) {
-    EXPECT_TRUE(a[i].action == "kill" || a[i].action == "pause") << a[i].action;
-    EXPECT_EQ(a[i + 1].action, a[i].action == "kill" ? "restart" : "resume");
+    EXPECT_TRUE(a[i].action == "kill" || a[i].action == "pause" || a[i].action == "fault") << a[i].action;
+    EXPECT_EQ(a[i + 1].action, a[i].action == "kill" ? "restart" : a[i].action == "fault" ? "clear" : "resume");
     EXPECT_EQ(a[i].target, a[i + 1].target);
     EXPECT_GE(a[i + 1].at_s - a[i].at_s, 2.0 - 0.01);
     EXPECT_LE(a[i + 1].at_s - a[i].at_s, 8.0 + 0.01);
