@@ -141,7 +141,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "tick_timing_us",
                                          "declared_dead_by_deadline",
                                          "membership_events",
-                                         "group_wear", "path"}));
+                                         "group_wear", "path", "agent_faults"}));
   EXPECT_EQ(j["live_agents"]["R"], 7);
   EXPECT_EQ(j["rejected_samples"], 3);
   EXPECT_EQ(j["late_samples"], 2);
