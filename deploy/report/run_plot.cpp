@@ -147,12 +147,25 @@ std::string notes(const std::vector<std::string>& lines) {
 
 std::vector<RunEvent> run_events(const nlohmann::json& summary) {
   std::vector<RunEvent> out;
-  for (const auto& f : summary.value(records::summary_key::kFailures, nlohmann::json::array()))
-    if (f.contains("at_s") && !f.contains("skipped"))
-      out.push_back({f.value("at_s", 0.0), f.value("action", "") + " " + f.value("target", ""), true});
+  for (const auto& f : summary.value(records::summary_key::kFailures, nlohmann::json::array())) {
+    if (!f.contains("at_s") || f.contains("skipped")) continue;
+    const bool agent_fault = f.value("action", "") == "fault";
+    // An agent's own fault is named by its mode ("short L3"), and its clear drawn too.
+    out.push_back({f.value("at_s", 0.0), (agent_fault ? f.value("mode", "") : f.value("action", "")) + " " +
+                                             f.value("target", ""), true});
+    if (agent_fault && f.contains("cleared_s") && f["cleared_s"].is_number())
+      out.push_back({f["cleared_s"].get<double>(), "clear " + f.value("target", ""), true});
+  }
   const auto& plant = summary.value(records::summary_key::kPlant, nlohmann::json::object());
   for (const auto& m : plant.value("membership_events", nlohmann::json::array()))
     out.push_back({m.value("t_s", 0.0), m.value("name", "") + " " + m.value("event", ""), false});
+  // What the groups made of the agents' faults: isolated (as what), let back.
+  for (const auto& d : plant.value("agent_faults", nlohmann::json::object()).value("diagnoses", nlohmann::json::array()))
+    out.push_back({d.value("t_s", 0.0),
+                   d.value("target", "") + (d.value("event", "") == "isolated"
+                                                ? " isolated (" + d.value("diagnosed", "") + ")"
+                                                : std::string(" let back")),
+                   false});
   std::stable_sort(out.begin(), out.end(),
                    [](const RunEvent& a, const RunEvent& b) { return a.t_s < b.t_s; });
   return out;

@@ -55,6 +55,8 @@ const char* state_name(CellState s) {
       return "paused";
     case CellState::kRejoining:
       return "rejoining";
+    case CellState::kFaulty:
+      return "faulty";
     case CellState::kUnknown:
       break;
   }
@@ -62,7 +64,7 @@ const char* state_name(CellState s) {
 }
 
 char state_letter(CellState s) {
-  static const char kLetters[] = "?A.HCSXPR";
+  static const char kLetters[] = "?A.HCSXPRF";
   return kLetters[static_cast<int>(s)];
 }
 
@@ -159,6 +161,15 @@ void FleetView::on_group(const msg::GroupStatus& g) {
   v.reallocations = g.reallocations();
   for (std::size_t i = 0; i < v.agents.size() && i < g.wear_m().size(); ++i)
     v.agents[i].wear_m = g.wear_m()[i];
+  static const char* const kDiagnosis[] = {"", "open", "short", "torque", "resistance", "stuck", "sensor", "erratic", "liar"};
+  for (std::size_t i = 0; i < v.agents.size() && i < g.faulty().size(); ++i) {
+    const uint8_t f = g.faulty()[i] <= msg::DIAG_LIAR ? g.faulty()[i] : 0;
+    if (f == v.agents[i].faulty) continue;
+    v.agents[i].faulty = f;
+    const std::string name = (s == 0 ? "L" : "R") + std::to_string(i);
+    add_event(f ? name + " isolated by its group (" + kDiagnosis[f] + ")" : name + " let back by its group",
+              ticked() ? t_s_ : std::nan(""));
+  }
 }
 
 void FleetView::on_central(const msg::CentralCommand& c) { v_x_ref_ = c.v_x_ref(); }
@@ -220,6 +231,7 @@ CellState FleetView::state(int s, int index) const {
   const AgentCell& a = sides_[s].agents[static_cast<std::size_t>(index)];
   if (a.rejoining) return CellState::kRejoining;
   if (a.died || !a.live) return CellState::kDead;
+  if (a.faulty) return CellState::kFaulty;
   if (a.reply_tick < 0) return CellState::kUnknown;
   if (phase_ == Phase::kRunning && now_s_ - a.reply_arrival_s > kPausedAfter_s) return CellState::kPaused;
   return from_reply(a.reply_state);

@@ -27,11 +27,11 @@ inline constexpr double kPausedAfter_s = 1.0;
 inline constexpr long long kGroupSilentTicks = 50;
 
 /// What one agent does, as the view shows it.
-enum class CellState { kUnknown, kActive, kIdle, kHolding, kCoasting, kStopping, kDead, kPaused, kRejoining };
+enum class CellState { kUnknown, kActive, kIdle, kHolding, kCoasting, kStopping, kDead, kPaused, kRejoining, kFaulty };
 
-/// "active", "idle", ..., "rejoining"; "?" for kUnknown.
+/// "active", "idle", ..., "rejoining", "faulty" (alive, isolated by its group); "?" for kUnknown.
 const char* state_name(CellState s);
-/// One letter per state for the compact view (A active, . idle, H, C, S, X dead, P, R, ?).
+/// One letter per state for the compact view (A active, . idle, H, C, S, X dead, P, R, F faulty, ?).
 char state_letter(CellState s);
 
 /// One agent: its last reply, its wear from its group, what the launcher and the plant said.
@@ -45,6 +45,7 @@ struct AgentCell {
   bool live = true;              ///< the plant's live mask
   bool died = false;             ///< the launcher said it died (and no start since)
   bool rejoining = false;        ///< started again, not yet back in the plant's live mask
+  uint8_t faulty = 0;            ///< its group's flag (msg::FaultDiagnosis): isolated though alive
 };
 
 /// One side: the plant's battery and wheel, the group's Level-2/Level-3 status, its agents.

@@ -17,7 +17,8 @@ constexpr int kBottomLines = 2;
 /// Agent states in the order the compact counts list them.
 constexpr CellState kStates[] = {CellState::kActive,    CellState::kIdle,     CellState::kHolding,
                                  CellState::kCoasting,  CellState::kStopping, CellState::kPaused,
-                                 CellState::kRejoining, CellState::kDead,     CellState::kUnknown};
+                                 CellState::kRejoining, CellState::kFaulty,   CellState::kDead,
+                                 CellState::kUnknown};
 
 std::string fmt(const char* f, ...) {
   char buf[256];
@@ -141,7 +142,7 @@ std::string status_line(const FleetView& v, bool compact_layout) {
 
 }  // namespace
 
-std::string legend() { return "A active . idle H holding C coasting S stopping X dead P paused R rejoining"; }
+std::string legend() { return "A active . idle H hold C coast S stop X dead P paused R rejoining F faulty"; }
 
 std::vector<std::string> layout(const FleetView& v, int width, int height) {
   if (width < kMinWidth || (height > 0 && height < kMinHeight))

@@ -220,3 +220,27 @@ TEST(TopView, TooSmallATerminalSaysSo) {
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_NE(lines[0].find("30x10"), std::string::npos);
 }
+
+TEST(TopView, AnAgentItsGroupIsolatedIsShownFaultyNotDead) {
+  FleetView v(info(4));
+  v.on_tick(tick(1, 0.01, 2), 1.0);
+  all_reply(v, 1, 1.0);
+  msg::GroupStatus g;
+  g.tick(1);
+  g.side(msg::SIDE_L);
+  g.wear_m({0.0, 0.0});
+  g.faulty({0, static_cast<uint8_t>(msg::DIAG_SHORT)});
+  v.on_group(g);
+  EXPECT_EQ(v.state(0, 1), CellState::kFaulty);
+  EXPECT_EQ(state_letter(CellState::kFaulty), 'F');
+  EXPECT_EQ(v.state(0, 0), CellState::kActive);
+  EXPECT_EQ(v.live_agents(), 4);  // alive: it answers, it only does not drive
+  ASSERT_FALSE(v.events().empty());
+  EXPECT_EQ(v.events().back().text, "L1 isolated by its group (short)");
+  EXPECT_TRUE(has_line(layout(v, 80, 24), "faulty")) << "the screen says so";
+  g.tick(2);
+  g.faulty({0, 0});
+  v.on_group(g);
+  EXPECT_EQ(v.state(0, 1), CellState::kActive);
+  EXPECT_EQ(v.events().back().text, "L1 let back by its group");
+}
