@@ -273,6 +273,7 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
   for (const auto& why : soak::check_wear(r.summary, dir, s.sc.robot.per_side()))
     failed.push_back({"wear", why});
   for (const auto& why : soak::check_band(r.summary, s.reference, s.band)) failed.push_back({"band", why});
+  for (const auto& why : soak::check_detection(r.summary)) failed.push_back({"detection", why});
   const auto kinds = soak::faults_by_kind(r.summary);
   for (const auto& [k, v] : kinds) s.totals.faults[k] += v;
   const std::string status = r.summary.value("status", "none");

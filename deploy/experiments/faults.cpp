@@ -45,7 +45,8 @@ std::string mode_label(const Mode& m) {
 }
 
 config::Scenario scenario(const Experiment& e, const Conditions& c, double mass, bool detection) {
-  config::Scenario s = e.base();  // the warehouse loop
+  config::Scenario s = config::load_scenario(e.opt().source_dir + "/deploy/scenarios/default.yaml");  // the loop
+  s.tick_hz = e.tick_hz();
   s.robot.agents = kAgents;
   s.robot.gross_mass_kg = mass;
   s.mode = "ec";
@@ -140,7 +141,7 @@ json row_of(const Run& r, const Run& twin, const Conditions& c, double mass, int
 
 std::string intro(const Conditions& c) {
   std::ostringstream o;
-  o << "EC, 16 agents, the warehouse loop (the default scenario). At t = " << c.fault_at
+  o << "EC, 16 agents, the warehouse loop (deploy/scenarios/default.yaml: bidirectional driver). At t = " << c.fault_at
     << " s, on the first straight at 1 m/s, k agents of side L break: those driving at that moment in the "
        "fault-free twin first. Each mode as `maptr run --fault L3:MODE[=VALUE]@20` gives it; `kill` is the crash "
        "(SIGKILL), which the plant's membership detects. 'detection on': the groups check every agent against "
@@ -155,7 +156,14 @@ std::string intro(const Conditions& c) {
 
 void plots(Experiment& e, const Conditions& c) {
   const double mass = c.masses.back();
-  const std::string one = "(column('agents')==1 && column('mass_kg')==" + fixed(mass, 1) + " && strcol('detection') eq ";
+  // The rows of one faulty agent at this mass with this detection.
+  const auto one = [mass](const char* detection) {
+    return "(column('agents')==1 && column('mass_kg')==" + fixed(mass, 1) + " && strcol('detection') eq '" +
+           detection + "')";
+  };
+  const auto x_of = [](const std::string& rows, const char* shift) {
+    return "(" + rows + " ? column('mode_index')" + shift + " : NaN)";
+  };
   std::string xtics;
   for (std::size_t i = 0; i < c.modes.size(); ++i)
     xtics += (xtics.empty() ? "" : ", ") + ("'" + mode_label(c.modes[i]) + "' " + std::to_string(i));
@@ -164,19 +172,19 @@ void plots(Experiment& e, const Conditions& c) {
   e.plot("faults-energy",
          "set title 'Energy penalty of one broken agent, detection on and off (EC, 16 agents, " + kg_label(mass) +
              " kg, warehouse loop)'\nset ylabel 'energy drawn minus the fault-free run (J)'\n" + common +
-             "plot 'faults.csv' using (" + one + "'on' ? column('mode_index')-0.1 : NaN)):'energy_penalty_J' "
-             "with points pt 7 ps 1.5 title 'detection on', \\\n"
-             "     '' using (" + one + "'off' ? column('mode_index')+0.1 : NaN)):'energy_penalty_J' with points pt 5 "
-             "ps 1.5 title 'detection off', \\\n"
-             "     '' using (" + one + "'plant' ? column('mode_index') : NaN)):'energy_penalty_J' with points pt 9 "
-             "ps 1.8 title 'crash (kill)'\n");
+             "plot 'faults.csv' using " + x_of(one("on"), "-0.1") +
+             ":'energy_penalty_J' with points pt 7 ps 1.5 title 'detection on', \\\n"
+             "     '' using " + x_of(one("off"), "+0.1") +
+             ":'energy_penalty_J' with points pt 5 ps 1.5 title 'detection off', \\\n"
+             "     '' using " + x_of(one("plant"), "") +
+             ":'energy_penalty_J' with points pt 9 ps 1.8 title 'crash (kill)'\n");
+  const std::string seen = "(" + one("on") + " || " + one("plant") + ")";
   e.plot("faults-detection",
          "set title 'Detection and isolation after the fault, one agent (EC, " + kg_label(mass) +
              " kg)'\nset ylabel 'simulated s after the fault'\nset yrange [0:*]\n" + common +
-             "plot 'faults.csv' using (" + one + "'on' || " + one + "'plant' ? column('mode_index') : NaN)):"
-             "'detect_s_max' with points pt 7 ps 1.5 title 'detected', \\\n"
-             "     '' using (" + one + "'on' || " + one + "'plant' ? column('mode_index') : NaN)):'isolate_s_max' "
-             "with points pt 6 ps 2 title 'isolated'\n");
+             "plot 'faults.csv' using " + x_of(seen, "") +
+             ":'detect_s_max' with points pt 7 ps 1.5 title 'detected', \\\n"
+             "     '' using " + x_of(seen, "") + ":'isolate_s_max' with points pt 6 ps 2 title 'isolated'\n");
 }
 
 }  // namespace

@@ -103,6 +103,16 @@ double deviation_pct(double value, double reference) {
   return reference != 0.0 ? 100.0 * (value - reference) / std::fabs(reference) : 0.0;
 }
 
+std::vector<std::string> check_detection(const nlohmann::json& summary) {
+  std::vector<std::string> out;
+  const auto plant = summary.value("plant", nlohmann::json::object());
+  for (const auto& d : plant.value("agent_faults", nlohmann::json::object()).value("diagnoses", nlohmann::json::array()))
+    if (d.value("false_detection", false))
+      out.push_back(d.value("target", "") + " isolated as " + d.value("diagnosed", "") + " at " +
+                    std::to_string(d.value("t_s", 0.0)) + " s with no fault in force");
+  return out;
+}
+
 std::vector<std::string> check_band(const nlohmann::json& summary, const nlohmann::json& reference,
                                     const Band& b) {
   std::vector<std::string> out;

@@ -55,6 +55,10 @@ std::vector<std::string> check_wear(const nlohmann::json& summary, const std::st
 double deviation_pct(double value, double reference);
 
 /// Failures of distance and energy against the fault-free summary `reference`.
+/// The groups' detection: every healthy agent they isolated (a false detection), by name and
+/// time; empty when none.
+std::vector<std::string> check_detection(const nlohmann::json& summary);
+
 std::vector<std::string> check_band(const nlohmann::json& summary, const nlohmann::json& reference,
                                     const Band& b);
 

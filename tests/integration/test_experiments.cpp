@@ -3,6 +3,8 @@
 // summary.json (its table as JSON) and the files it wrote.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -226,10 +228,35 @@ TEST(Experiments, TurnsQuickReachTableAndTheLoopFollowedByNoAndEc) {
     EXPECT_TRUE(is_png(out + "/" + f)) << f;
 }
 
+// faults --quick: the warehouse loop at 30 kg, one agent of side L broken at 20 s: open and
+// sensor=5 with the groups' detection on and off, and the crash of the same agent.
+TEST(Experiments, FaultsQuickDetectsWhatRunsSilentOtherwise) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/faults";
+  CliResult r;
+  ASSERT_NO_FATAL_FAILURE(run_quick("faults", out, 600, r));
+  const auto& rows = r.summary["rows"];
+  ASSERT_EQ(rows.size(), 5u) << rows.dump();
+  std::map<std::string, nlohmann::json> by;
+  for (const auto& row : rows) by[row["mode"].get<std::string>() + "/" + row["detection"].get<std::string>()] = row;
+  for (const char* k : {"open/on", "sensor=5/on", "kill/plant"}) {
+    EXPECT_EQ(by[k]["detected"], 1) << k << by[k].dump();
+    EXPECT_LE(num(by[k], "detect_s_max"), 1.0) << k;
+    EXPECT_EQ(by[k]["status"], "ok") << k;
+  }
+  EXPECT_EQ(by["open/on"]["diagnosed"], "open");
+  EXPECT_EQ(by["sensor=5/on"]["diagnosed"], "sensor");
+  for (const char* k : {"open/off", "sensor=5/off"}) EXPECT_EQ(by[k]["detected"], 0) << k;
+  // A silent wrong sensor makes its PID fight the others: isolating it saves energy.
+  EXPECT_GT(num(by["sensor=5/off"], "energy_penalty_J"), num(by["sensor=5/on"], "energy_penalty_J") + 100.0)
+      << by["sensor=5/off"].dump() << by["sensor=5/on"].dump();
+  for (const char* f : {"faults-energy.png", "faults-detection.png"}) EXPECT_TRUE(is_png(out + "/" + f)) << f;
+}
+
 TEST(Experiments, UnknownNameExitsWith2AndListsTheExperiments) {
   TempDir tmp;
   const auto r = run_cli({"experiment", "no-such-experiment", "--out", tmp.path() + "/x"}, tmp.path() + "/x", 30);
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  for (const char* n : {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures", "turns"})
+  for (const char* n : {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures", "turns", "faults"})
     EXPECT_NE(r.output.find(n), std::string::npos) << n << " missing from: " << r.output;
 }

@@ -74,6 +74,20 @@ TEST(Soak, DistanceAndEnergyWithinTheBand) {
   EXPECT_EQ(check_band({{"distance_m", 400.0}, {"energy_J", 12500.0}}, ref, b).size(), 1u);  // +25 %
 }
 
+TEST(Soak, AHealthyAgentIsolatedFailsTheDetectionCheck) {
+  const json clean = {{"plant", {{"agent_faults", {{"diagnoses", json::array({{{"target", "L1"},
+                                                                               {"diagnosed", "open"},
+                                                                               {"t_s", 12.5},
+                                                                               {"false_detection", false}}})}}}}}};
+  EXPECT_TRUE(check_detection(clean).empty());
+  json bad = clean;
+  bad["plant"]["agent_faults"]["diagnoses"][0]["false_detection"] = true;
+  const auto why = check_detection(bad);
+  ASSERT_EQ(why.size(), 1u);
+  EXPECT_NE(why[0].find("L1 isolated as open at 12.5"), std::string::npos) << why[0];
+  EXPECT_TRUE(check_detection(json::object()).empty());  // a summary without the record
+}
+
 TEST(Soak, FaultsCountedByKindAndSkipped) {
   const json s = {{"failures", json::array({{{"action", "kill"}},
                                             {{"action", "restart"}},
