@@ -97,6 +97,35 @@ Diagnosis SideDiagnosis::classify_b(const std::deque<Sample>& w) const {
   return Diagnosis::kLiar;
 }
 
+void SideDiagnosis::watch_jitter(Agent& a, const DriveSample& d, double median, bool side_steps) {
+  if (d.drove && a.last_drove && side_steps) {
+    // Its step apart from the side's, and how that changed since the last tick: a steady
+    // difference (a sensor's offset winding the PID's integrator up) is no jitter.
+    const double c = d.drive_V - a.last_V - median;
+    if (a.has_c) {
+      a.jitter.push_back(std::fabs(c - a.last_c));
+      if (static_cast<int>(a.jitter.size()) > need_) a.jitter.pop_front();
+    }
+    a.last_c = c;
+    a.has_c = true;
+  } else {
+    a.jitter.clear();
+    a.has_c = false;
+  }
+  a.last_drove = d.drove;
+  a.last_V = d.drive_V;
+}
+
+Diagnosis SideDiagnosis::verdict(const Agent& a) const {
+  if (static_cast<int>(a.a.size()) >= need_) return classify_a(a.a);
+  if (static_cast<int>(a.b.size()) >= need_) return classify_b(a.b);
+  if (static_cast<int>(a.jitter.size()) < need_) return Diagnosis::kNone;
+  // The median, not the mean: one step (a sensor's offset, a new assignment) is no jitter.
+  std::vector<double> v(a.jitter.begin(), a.jitter.end());
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2] > c_.jitter_V ? Diagnosis::kErratic : Diagnosis::kNone;
+}
+
 std::vector<DiagnosisChange> SideDiagnosis::step(double t, const SideSample& s) {
   std::vector<DiagnosisChange> changes;
   const std::size_t n = std::min(agents_.size(), s.agents.size());
@@ -133,33 +162,8 @@ std::vector<DiagnosisChange> SideDiagnosis::step(double t, const SideSample& s) 
     };
     track(a.a, std::fabs(d.measured_A - expected) > c_.current_A, smp);
     track(a.b, d.reported && std::fabs(d.reported_A - reported_model) > c_.current_A, smp);
-    if (d.drove && a.last_drove && steps.size() >= 2) {
-      // Its step apart from the side's, and how that changed since the last tick: a steady
-      // difference (a sensor's offset winding the PID's integrator up) is no jitter.
-      const double c = d.drive_V - a.last_V - median;
-      if (a.has_c) {
-        a.jitter.push_back(std::fabs(c - a.last_c));
-        if (static_cast<int>(a.jitter.size()) > need_) a.jitter.pop_front();
-      }
-      a.last_c = c;
-      a.has_c = true;
-    } else {
-      a.jitter.clear();
-      a.has_c = false;
-    }
-    a.last_drove = d.drove;
-    a.last_V = d.drive_V;
-    Diagnosis flag = Diagnosis::kNone;
-    if (static_cast<int>(a.a.size()) >= need_) {
-      flag = classify_a(a.a);
-    } else if (static_cast<int>(a.b.size()) >= need_) {
-      flag = classify_b(a.b);
-    } else if (static_cast<int>(a.jitter.size()) >= need_) {
-      // The median, not the mean: one step (a sensor's offset, a new assignment) is no jitter.
-      std::vector<double> v(a.jitter.begin(), a.jitter.end());
-      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-      if (v[v.size() / 2] > c_.jitter_V) flag = Diagnosis::kErratic;
-    }
+    watch_jitter(a, d, median, steps.size() >= 2);
+    const Diagnosis flag = verdict(a);
     if (flag == Diagnosis::kNone) continue;
     flags_[j] = static_cast<uint8_t>(flag);
     if (a.flagged++ > 0) a.probation_s *= 2.0;  // a relapse

@@ -95,6 +95,10 @@ class SideDiagnosis {
   Diagnosis classify_a(const std::deque<Sample>& w) const;
   Diagnosis classify_b(const std::deque<Sample>& w) const;
   void reset(Agent& a);
+  /// Channel C: the agent's voltage step apart from the side's median step.
+  void watch_jitter(Agent& a, const DriveSample& d, double median, bool side_steps);
+  /// The flag its residuals call for (kNone: none yet).
+  Diagnosis verdict(const Agent& a) const;
 
   DiagnosisConfig c_;
   int need_;

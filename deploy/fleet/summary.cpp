@@ -209,6 +209,41 @@ nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded, 
 
 namespace maptr::deploy {
 
+namespace {
+/// The console's lines on the agents' own faults: what became of each, and false detections.
+std::string fault_lines(const nlohmann::json& s) {
+  std::ostringstream os;
+  char buf[512];
+  // The agents' own faults: what became of each.
+  for (const auto& f : s.value("failures", nlohmann::json::array())) {
+    if (f.value("action", "") != "fault") continue;
+    const auto num = [&f](const char* k) { return f.contains(k) && f[k].is_number() ? f[k].get<double>() : -1.0; };
+    std::string mode = f.value("mode", "");
+    if (f.value("value", 0.0) != 0.0) mode += "=" + model::param_value(f.value("value", 0.0));
+    std::string what;
+    if (num("detected_s") >= 0.0) {
+      std::snprintf(buf, sizeof(buf), "detected %.2f s later as %s, isolated at %.2f s", num("detected_s") - num("injected_s"),
+                    f.value("diagnosed_mode", std::string("?")).c_str(), num("isolated_s"));
+      what = buf;
+    } else {
+      what = f.value("exposed_ticks", 0) > 0 ? "NOT DETECTED" : "not detected (it never acted on the drive)";
+    }
+    if (num("readmitted_s") >= 0.0) what += ", let back at " + model::param_value(num("readmitted_s")) + " s";
+    if (f.value("relapses", 0) > 0) what += ", flagged again " + std::to_string(f.value("relapses", 0)) + " times";
+    std::snprintf(buf, sizeof(buf), "fault       %s %s at %.2f s: %s; max speed error %.2f %%\n", f.value("target", "").c_str(),
+                  mode.c_str(), num("injected_s"), what.c_str(), num("max_speed_error_pct"));
+    os << buf;
+  }
+  const nlohmann::json plant_faults = s.contains("plant") && s["plant"].is_object()
+                                          ? s["plant"].value("agent_faults", nlohmann::json::object())
+                                          : nlohmann::json::object();
+  if (plant_faults.value("false_detections", 0) > 0)
+    os << "faults      " << plant_faults.value("false_detections", 0)
+       << " healthy agents isolated (false detections): see plant.json agent_faults.diagnoses\n";
+  return os.str();
+}
+}  // namespace
+
 std::string human_summary(const nlohmann::json& s) {
   std::ostringstream os;
   char buf[512];
@@ -260,32 +295,7 @@ std::string human_summary(const nlohmann::json& s) {
                   static_cast<unsigned long long>(c.value("taken_by_plant", 0ull)));
     os << buf;
   }
-  // The agents' own faults: what became of each.
-  for (const auto& f : s.value("failures", nlohmann::json::array())) {
-    if (f.value("action", "") != "fault") continue;
-    const auto num = [&f](const char* k) { return f.contains(k) && f[k].is_number() ? f[k].get<double>() : -1.0; };
-    std::string mode = f.value("mode", "");
-    if (f.value("value", 0.0) != 0.0) mode += "=" + model::param_value(f.value("value", 0.0));
-    std::string what;
-    if (num("detected_s") >= 0.0) {
-      std::snprintf(buf, sizeof(buf), "detected %.2f s later as %s, isolated at %.2f s", num("detected_s") - num("injected_s"),
-                    f.value("diagnosed_mode", std::string("?")).c_str(), num("isolated_s"));
-      what = buf;
-    } else {
-      what = f.value("exposed_ticks", 0) > 0 ? "NOT DETECTED" : "not detected (it never acted on the drive)";
-    }
-    if (num("readmitted_s") >= 0.0) what += ", let back at " + model::param_value(num("readmitted_s")) + " s";
-    if (f.value("relapses", 0) > 0) what += ", flagged again " + std::to_string(f.value("relapses", 0)) + " times";
-    std::snprintf(buf, sizeof(buf), "fault       %s %s at %.2f s: %s; max speed error %.2f %%\n", f.value("target", "").c_str(),
-                  mode.c_str(), num("injected_s"), what.c_str(), num("max_speed_error_pct"));
-    os << buf;
-  }
-  const nlohmann::json plant_faults = s.contains("plant") && s["plant"].is_object()
-                                          ? s["plant"].value("agent_faults", nlohmann::json::object())
-                                          : nlohmann::json::object();
-  if (plant_faults.value("false_detections", 0) > 0)
-    os << "faults      " << plant_faults.value("false_detections", 0)
-       << " healthy agents isolated (false detections): see plant.json agent_faults.diagnoses\n";
+  os << fault_lines(s);
   if (s.contains("level2") && s["level2"].is_object())
     for (const auto& [side, l2] : s["level2"].items()) {
       if (l2.value("decisions", 0) == 0) continue;
