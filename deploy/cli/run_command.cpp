@@ -149,7 +149,7 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--resume", a.resumes, "continue a paused process (SIGCONT), e.g. L3@130 (repeatable)");
   run->add_option(
       "--chaos", a.chaos,
-      "random kills and restarts, pauses and resumes of agents and controllers, reproducible from SEED");
+      "random kills and restarts, pauses and resumes of agents and controllers, and one agent fault (cleared 2-8 s later), reproducible from SEED");
   run->add_option("--external", a.external, "an agent you start yourself (the launcher prints the command)");
   run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm on one host; data on shm+udp across hosts or with --secure)")
       ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
@@ -169,7 +169,7 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--heal", a.heals, "link a cut host again, e.g. h2@30");
   run->add_option("--fault", a.agent_faults,
                   "break an agent that runs on, e.g. L3:open@20, L3:torque=0.5@20, L3:stuck=12@20, "
-                  "R1:sensor=5@30, R1:erratic=2@30, L0:liar@10 (modes: maptr fields; repeatable)");
+                  "R1:sensor=5@30, R1:erratic=2@30, L0:liar@10 (repeatable; docs/ARCHITECTURE.md \"Fault detection\")");
   run->add_option("--clear", a.clears, "end an agent's fault, e.g. L3@40 (repeatable)");
   run->add_option("--stall-timeout", a.stall_timeout_s,
                   "end the run as stalled after this many wall seconds without a tick (default 180)")

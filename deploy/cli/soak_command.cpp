@@ -242,7 +242,7 @@ struct Soak {
 
 CLI::App* add_soak_command(CLI::App& app, SoakArgs& a) {
   auto* c = app.add_subcommand(
-      "soak", "fleets back to back with seeded random kills, restarts, pauses and resumes; checks each one");
+      "soak", "fleets back to back with seeded random kills, restarts, pauses, resumes and agent faults; checks each one");
   c->add_option("--seed", a.seed, "seed of the fault schedules")->check(CLI::Range(0LL, 4294967295LL));
   c->add_option("--faults", a.faults, "faults to apply over the whole soak")
       ->check(CLI::Range(1LL, 1000000LL));

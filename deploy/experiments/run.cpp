@@ -111,6 +111,13 @@ void derive(Run& r) {
   second_half(t, r.trace);
 }
 
+double energy_at(const Run& r, double t) {
+  double e = kNaN;
+  for (const auto& x : trace_of(r))
+    if (x.t_s <= t + 1e-9) e = x.energy_J;
+  return e;
+}
+
 double max_speed_error_after(const Run& r, double t0) {
   const double rad = r.s.robot.wheel_radius_m;
   double m = kNaN;

@@ -52,6 +52,9 @@ struct Run {
 /// message when it is unreadable).
 void derive(Run& r);
 
+/// Energy drawn up to the last trace row at or before t, J (NaN without a trace).
+double energy_at(const Run& r, double t);
+
 /// Largest |v - v_ref| / v_ref in percent over the trace rows with t >= t0.
 double max_speed_error_after(const Run& r, double t0);
 

@@ -125,6 +125,18 @@ void tick_seeds(Seeds& out) {
   t = tick_sample();
   t.tick(std::numeric_limits<std::uint64_t>::max());
   out.push_back({"tick-far-future", serialize<msg::PlantTickPubSubType>(k, t)});
+  // With the drive's measurements (fault detection on), and with a NaN current among them.
+  t = tick_sample();
+  for (auto& s : t.sides()) {
+    s.drove(std::vector<std::uint8_t>(fuzz::kPerSide, 1));
+    s.drive_V(std::vector<float>(fuzz::kPerSide, 11.5f));
+    s.measured_A(std::vector<float>(fuzz::kPerSide, 0.8f));
+    s.reported(std::vector<std::uint8_t>(fuzz::kPerSide, 1));
+    s.reported_A(std::vector<float>(fuzz::kPerSide, 0.8f));
+  }
+  out.push_back({"tick-measured", serialize<msg::PlantTickPubSubType>(k, t)});
+  t.sides()[1].measured_A()[2] = std::numeric_limits<float>::quiet_NaN();
+  out.push_back({"tick-measured-nan", serialize<msg::PlantTickPubSubType>(k, t)});
 }
 
 void reply_seeds(Seeds& out) {
@@ -156,6 +168,10 @@ void other_seeds(Seeds& out) {
   msg::GroupStatus g = group_sample();
   g.active(std::vector<std::uint8_t>(2, 1));
   out.push_back({"group-short-mask", serialize<msg::GroupStatusPubSubType>(SampleKind::kGroupStatus, g)});
+  g = group_sample();
+  g.faulty(std::vector<std::uint8_t>(fuzz::kPerSide, 0));
+  g.faulty()[1] = msg::DIAG_SHORT;
+  out.push_back({"group-faulty", serialize<msg::GroupStatusPubSubType>(SampleKind::kGroupStatus, g)});
   out.push_back({"central-ok",
                  serialize<msg::CentralCommandPubSubType>(SampleKind::kCentralCommand, central_sample())});
   msg::CentralCommand c = central_sample();

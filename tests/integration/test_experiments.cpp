@@ -233,8 +233,9 @@ TEST(Experiments, TurnsQuickReachTableAndTheLoopFollowedByNoAndEc) {
 TEST(Experiments, FaultsQuickDetectsWhatRunsSilentOtherwise) {
   TempDir tmp;
   const std::string out = tmp.path() + "/faults";
-  CliResult r;
-  ASSERT_NO_FATAL_FAILURE(run_quick("faults", out, 600, r));
+  const CliResult r = run_experiment("faults", out, 600);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto& rows = r.summary["rows"];
   ASSERT_EQ(rows.size(), 5u) << rows.dump();
   std::map<std::string, nlohmann::json> by;

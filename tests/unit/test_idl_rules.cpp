@@ -59,6 +59,48 @@ TEST(IdlRules, TickMasksHaveOneEntryOfZeroOrOnePerAgent) {
   EXPECT_FALSE(msg::well_formed(t, bounds()));
 }
 
+TEST(IdlRules, TheDrivesMeasurementsAreAllAbsentOrOneFiniteEntryPerAgent) {
+  auto measured = [] {
+    auto t = tick();
+    for (auto& s : t.sides()) {
+      s.drove(std::vector<uint8_t>{1, 1, 0, 0});
+      s.drive_V(std::vector<float>{3.0f, 3.0f, 0.0f, 0.0f});
+      s.measured_A(std::vector<float>{0.2f, 0.2f, 0.0f, -0.1f});
+      s.reported(std::vector<uint8_t>{1, 1, 1, 0});
+      s.reported_A(std::vector<float>{0.2f, 0.2f, 0.0f, 0.0f});
+    }
+    return t;
+  };
+  EXPECT_TRUE(msg::well_formed(measured(), bounds()));
+  auto t = measured();
+  t.sides()[0].measured_A().pop_back();  // one entry short
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t = measured();
+  t.sides()[1].reported_A()[0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t = measured();
+  t.sides()[1].drove()[3] = 2;
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+  t = measured();
+  t.sides()[0].drive_V().clear();  // some present, some not
+  EXPECT_FALSE(msg::well_formed(t, bounds()));
+}
+
+TEST(IdlRules, AGroupsFaultyFlagsAreAbsentOrAKnownDiagnosisPerAgent) {
+  msg::GroupStatus g;
+  g.side(msg::SIDE_L);
+  g.active(std::vector<uint8_t>(4, 1));
+  g.live(std::vector<uint8_t>(4, 1));
+  g.wear_m(std::vector<double>(4, 0.0));
+  EXPECT_TRUE(msg::well_formed(g, bounds()));
+  g.faulty(std::vector<uint8_t>{0, msg::DIAG_LIAR, 0, msg::DIAG_OPEN});
+  EXPECT_TRUE(msg::well_formed(g, bounds()));
+  g.faulty()[2] = msg::DIAG_LIAR + 1;
+  EXPECT_FALSE(msg::well_formed(g, bounds()));
+  g.faulty(std::vector<uint8_t>(3, 0));
+  EXPECT_FALSE(msg::well_formed(g, bounds()));
+}
+
 TEST(IdlRules, TickNumbersStampsAndStep) {
   for (double bad : {kNaN, kInf, 0.0, -0.01}) {
     auto t = tick();
