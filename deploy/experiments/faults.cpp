@@ -186,10 +186,10 @@ void plots(Experiment& e, const Conditions& c) {
   std::string xtics;
   for (std::size_t i = 0; i < c.modes.size(); ++i)
     xtics += (xtics.empty() ? "" : ", ") + ("'" + mode_label(c.modes[i]) + "' " + std::to_string(i));
-  const std::string common = "set xtics (" + xtics + ")\nset xrange [-0.5:" + std::to_string(c.modes.size()) +
-                             "-0.5]\nset key top left\nset grid ytics\n";
+  const std::string common = "set xtics rotate by -25 (" + xtics + ")\nset xrange [-0.5:" +
+                             std::to_string(c.modes.size()) + "-0.5]\nset key inside top left\nset grid ytics\n";
   e.plot("faults-energy",
-         "set title 'Energy penalty of one broken agent, detection on and off (EC, 16 agents, " + kg_label(mass) +
+         "set title 'One broken agent: energy penalty before the stop (EC, 16 agents, " + kg_label(mass) +
              " kg, warehouse loop)'\nset ylabel 'energy drawn minus the fault-free run (J)'\n" + common +
              "plot 'faults.csv' using " + x_of(one("on"), "-0.1") +
              ":'energy_penalty_J' with points pt 7 ps 1.5 title 'detection on', \\\n"
@@ -199,7 +199,7 @@ void plots(Experiment& e, const Conditions& c) {
              ":'energy_penalty_J' with points pt 9 ps 1.8 title 'crash (kill)'\n");
   const std::string seen = "(" + one("on") + " || " + one("plant") + ")";
   e.plot("faults-detection",
-         "set title 'Detection and isolation after the fault, one agent (EC, " + kg_label(mass) +
+         "set title 'One broken agent: detection and isolation (EC, 16 agents, " + kg_label(mass) +
              " kg)'\nset ylabel 'simulated s after the fault'\nset yrange [0:*]\n" + common +
              "plot 'faults.csv' using " + x_of(seen, "") +
              ":'detect_s_max' with points pt 7 ps 1.5 title 'detected', \\\n"

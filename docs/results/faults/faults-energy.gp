@@ -1,0 +1,16 @@
+# made by `maptr experiment faults --out docs/results/faults`; run in this folder: gnuplot faults-energy.gp
+set terminal pngcairo size 900,600 font ',11' noenhanced
+set output 'faults-energy.png'
+set datafile separator ','
+set datafile columnheaders
+set grid
+set key outside right top
+set title 'One broken agent: energy penalty before the stop (EC, 16 agents, 30 kg, warehouse loop)'
+set ylabel 'energy drawn minus the fault-free run (J)'
+set xtics rotate by -25 ('open' 0, 'short' 1, 'torque=0.5' 2, 'resistance=3' 3, 'stuck=12' 4, 'sensor=5' 5, 'erratic=2' 6, 'liar' 7, 'kill' 8)
+set xrange [-0.5:9-0.5]
+set key inside top left
+set grid ytics
+plot 'faults.csv' using ((column('agents')==1 && column('mass_kg')==30.0 && strcol('detection') eq 'on') ? column('mode_index')-0.1 : NaN):'energy_penalty_J' with points pt 7 ps 1.5 title 'detection on', \
+     '' using ((column('agents')==1 && column('mass_kg')==30.0 && strcol('detection') eq 'off') ? column('mode_index')+0.1 : NaN):'energy_penalty_J' with points pt 5 ps 1.5 title 'detection off', \
+     '' using ((column('agents')==1 && column('mass_kg')==30.0 && strcol('detection') eq 'plant') ? column('mode_index') : NaN):'energy_penalty_J' with points pt 9 ps 1.8 title 'crash (kill)'
