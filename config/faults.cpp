@@ -44,7 +44,7 @@ std::string fault_mode_problem(const FaultSpec& f, const model::RobotParams& rob
     return v != 0.0 && std::fabs(v) <= 1000.0 ? "" : "sensor=B is a speed offset: B nonzero, |B| <= 1000 rad/s";
   if (f.mode == "erratic") return v > 0.0 && v <= 100.0 ? "" : "erratic=S is a noise level: S in (0, 100] V";
   field = "mode";
-  return "unknown mode";
+  return "unknown mode: one of open, short, torque, resistance, stuck, sensor, erratic, liar";
 }
 
 }  // namespace maptr::config

@@ -5,6 +5,8 @@
 
 #include <csignal>
 #include <filesystem>
+#include <iterator>
+#include <fstream>
 #include <string>
 
 #include "deploy/fleet/ready_check.hpp"
@@ -76,11 +78,17 @@ struct Sleeper {
       execve("/bin/sleep", argv, envp);
       _exit(127);
     }
-    // Until exec, /proc shows the test's own executable.
+    // Until its exec is done, /proc shows the test's own executable, and for a moment after the
+    // new executable an empty environment: wait for both, however long a loaded machine takes
+    // (at most 60 s).
     const auto want = std::filesystem::canonical("/bin/sleep");
-    for (int i = 0; i < 200; ++i) {
+    for (int i = 0; i < 6000; ++i) {
       std::error_code ec;
-      if (std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec) == want) break;
+      std::ifstream env("/proc/" + std::to_string(pid) + "/environ", std::ios::binary);
+      const std::string text((std::istreambuf_iterator<char>(env)), std::istreambuf_iterator<char>());
+      if (std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec) == want &&
+          text.find(fleet_env) != std::string::npos)
+        break;
       usleep(10000);
     }
   }
