@@ -247,46 +247,59 @@ void check_driver(const Scenario& s, const Context& c) {
     c.fail("robot.regeneration", "true", "only a bidirectional driver (robot.driver) can regenerate");
 }
 
-/// The plant is never paused: it is the fleet's clock.
-void check_pauses(const Scenario& s, const Context& c) {
+/// Where a fault's messages point: the file's faults[i], or the option it was given as.
+struct FaultContext {
+  Context c;
+  std::string base;
+  FaultContext(const Context& file, const FaultSpec& f, std::size_t i)
+      : c(f.origin.empty() ? file : Context{f.origin}),
+        base(f.origin.empty() ? "faults[" + std::to_string(i) + "]" : "faults[]") {}
+  [[noreturn]] void fail(const std::string& field, const std::string& value, const std::string& why) const {
+    c.fail(base + "." + field, value, why);
+  }
+};
+
+/// The plant is never paused (it is the fleet's clock), and the schedule holds no contradiction.
+void check_schedule(const Scenario& s, const Context& c) {
   for (std::size_t i = 0; i < s.faults.size(); ++i)
     if ((s.faults[i].action == "pause" || s.faults[i].action == "resume") && s.faults[i].target == "plant")
-      c.fail("faults[" + std::to_string(i) + "].target", "plant",
-             "the plant cannot be paused: it is the fleet's clock");
-  if (const auto i = unmatched_resume(s.faults))
-    c.fail("faults[" + std::to_string(*i) + "].action", "resume",
-           "a resume of " + s.faults[*i].target + " needs an earlier pause of it (not yet resumed)");
+      FaultContext(c, s.faults[i], i).fail("target", "plant", "the plant cannot be paused: it is the fleet's clock");
+  if (const auto p = schedule_problem(s.faults)) {
+    const FaultSpec& f = s.faults[p->index];
+    FaultContext(c, f, p->index)
+        .fail(p->field, p->field == "at_s" ? model::param_value(f.at_s) : p->field == "target" ? f.target : f.action,
+              p->why);
+  }
 }
 
-void check_faults(const Scenario& s, const Context& c) {
+void check_faults(const Scenario& s, const Context& file) {
   for (std::size_t i = 0; i < s.faults.size(); ++i) {
     const FaultSpec& f = s.faults[i];
-    const std::string base = "faults[" + std::to_string(i) + "]";
-    check_record(fault_table(), f, base, c);
+    const FaultContext fc(file, f, i);
+    check_record(fault_table(), f, fc.base, fc.c);
     int side = 0, idx = 0;
     if (parse_agent_name(f.target, side, idx) && idx >= s.robot.per_side())
-      c.fail(base + ".target", f.target,
-             "no such agent (" + std::to_string(s.robot.per_side()) + " per side)");
+      fc.fail("target", f.target, "no such agent (" + std::to_string(s.robot.per_side()) + " per side)");
     int host = 0;
     const bool host_target = parse_host_name(f.target, host);
     if (is_host_action(f.action) != host_target)
-      c.fail(base + ".target", f.target,
-             is_host_action(f.action) ? "action " + f.action + " needs a host (h0, h1, ...)"
-                                      : "action " + f.action + " needs a process, not a host");
+      fc.fail("target", f.target,
+              is_host_action(f.action) ? "action " + f.action + " needs a host (h0, h1, ...)"
+                                       : "action " + f.action + " needs a process, not a host");
     if (host_target && is_host_action(f.action) && !s.hosts.enabled())
-      c.fail(base + ".target", f.target, "a host fault needs a fleet on several hosts (--hosts N)");
+      fc.fail("target", f.target, "a host fault needs a fleet on several hosts (--hosts N)");
     if (host_target && s.hosts.enabled() && host >= s.hosts.count)
-      c.fail(base + ".target", f.target, "no such host (" + std::to_string(s.hosts.count) + " hosts: h0..)");
+      fc.fail("target", f.target, "no such host (" + std::to_string(s.hosts.count) + " hosts: h0..)");
     if (f.at_s > s.duration_s)
-      c.fail(base + ".at_s", model::param_value(f.at_s), "must be within [0, duration_s]");
+      fc.fail("at_s", model::param_value(f.at_s),
+              "after the end of the run (duration_s = " + model::param_value(s.duration_s) + " s)");
     if (is_agent_fault_action(f.action) && !parse_agent_name(f.target, side, idx))
-      c.fail(base + ".target", f.target, "action " + f.action + " needs an agent (L0, R3, ...): only a wheel's motor or its agent's software fails this way");
+      fc.fail("target", f.target, "action " + f.action + " needs an agent (L0, R3, ...): only a wheel's motor or its agent's software fails this way");
     std::string field;
     const std::string why = fault_mode_problem(f, s.robot, field);
-    if (!why.empty())
-      c.fail(base + "." + field, field == "mode" ? f.mode : model::param_value(f.value), why);
+    if (!why.empty()) fc.fail(field, field == "mode" ? f.mode : model::param_value(f.value), why);
   }
-  check_pauses(s, c);
+  check_schedule(s, file);
 }
 
 template <class R>
@@ -419,6 +432,39 @@ std::vector<FieldInfo> field_table() {
   return out;
 }
 
+std::vector<FieldInfo> host_field_table() {
+  const auto info = [](const char* path, FieldType type, const char* rule, const char* description) {
+    FieldInfo f;
+    f.path = path;
+    f.type = type;
+    f.rule = rule;
+    f.description = description;
+    f.input_only = false;
+    return f;
+  };
+  FieldInfo count = info("hosts.count", FieldType::kInteger, "",
+                         "hosts h0.. the fleet runs on (network namespaces of this machine, or hosts.machines); "
+                         "absent: every process on this machine, no namespaces");
+  count.range = Range{1, static_cast<double>(kMaxHosts), false, false, false, 1};
+  count.unit = "1";
+  count.default_value = "0";
+  return {count,
+          info("hosts.launcher_address", FieldType::kText, "an IP address",
+               "the address real machines reach the launcher at (needed with hosts.machines)"),
+          info("hosts.machines[].address", FieldType::kText, "an IPv4 address",
+               "a real machine's address, one entry per host (without machines each host is a namespace here)"),
+          info("hosts.machines[].command", FieldType::kText, "a command prefix, e.g. ssh user@board1",
+               "what starts a process on that machine, which holds the binaries and run folder at this machine's paths"),
+          info("hosts.placement[]", FieldType::kText, "NAME=hN, e.g. central=h1",
+               "put a process on a host (the rest are spread by the launcher)")};
+}
+
+std::vector<FieldInfo> reference_field_table() {
+  std::vector<FieldInfo> out = field_table();
+  for (auto& f : host_field_table()) out.push_back(std::move(f));
+  return out;
+}
+
 void set_field(Scenario& s, const std::string& path, const std::string& value, const std::string& origin) {
   const Context c{origin};
   // The robot's top-level keys also by their place in the struct.
@@ -441,22 +487,14 @@ void set_speed(Scenario& s, const std::string& value, const std::string& origin)
     if (g.type != "stop") g.speed_mps = in.seg.speed_mps;
 }
 
-std::string agent_name(int side, int index) { return (side == 0 ? "L" : "R") + std::to_string(index); }
-
-std::optional<std::size_t> unmatched_resume(const std::vector<FaultSpec>& faults) {
-  std::vector<std::size_t> order(faults.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return faults[a].at_s < faults[b].at_s; });
-  std::set<std::string> paused;
-  for (const std::size_t i : order) {
-    const FaultSpec& f = faults[i];
-    if (f.action == "pause") paused.insert(f.target);
-    if (f.action == "kill") paused.erase(f.target);
-    if (f.action == "resume" && !paused.erase(f.target)) return i;
-  }
-  return std::nullopt;
+void set_duration(Scenario& s, const std::string& value, const std::string& origin) {
+  set_field(s, "duration_s", value, origin);
+  // A run longer than the trajectory: its last segment goes on.
+  if (!s.trajectory.segments.empty() && s.trajectory.total_duration() < s.duration_s)
+    s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
 }
+
+std::string agent_name(int side, int index) { return (side == 0 ? "L" : "R") + std::to_string(index); }
 
 bool parse_agent_name(const std::string& n, int& side, int& index) {
   if (n.size() < 2 || (n[0] != 'L' && n[0] != 'R')) return false;

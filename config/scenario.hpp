@@ -61,6 +61,9 @@ struct FaultSpec {
   double at_s = 0.0;   ///< simulated time, s
   std::string mode;    ///< action fault: open, short, torque, resistance, stuck (motor); sensor, erratic, liar (agent)
   double value = 0.0;  ///< action fault: torque/resistance F, stuck V [V], sensor B [rad/s], erratic S [V]
+  /// Where it was given, for messages: "" for the scenario file's faults[i], else the option
+  /// as typed ("--kill L3@100", "--chaos 7"). Not a scenario field.
+  std::string origin;
 
   /// A fault without mode: a process's or a host's (kill, restart, pause, ...).
   static FaultSpec of(std::string target, std::string action, double at_s) {
@@ -83,6 +86,24 @@ bool is_agent_fault_action(const std::string& action);
 std::string fault_mode_problem(const FaultSpec& f, const model::RobotParams& robot, std::string& field);
 /// The first tick k with k dt >= at_s: when the plant and an agent apply a fault or clear at at_s.
 long long first_tick_at(double at_s, double dt_s);
+
+/// A fault that contradicts the schedule before it: the index into the list, the field at
+/// fault ("action", "target" or "at_s") and why.
+struct ScheduleProblem {
+  std::size_t index = 0;
+  std::string field;
+  std::string why;
+};
+/// The first contradiction in a schedule, taken in time order (ties in list order), or nullopt.
+/// A process is running until killed; a kill needs it running or paused (not dead), a restart
+/// needs it dead, a pause needs it running, a resume needs it paused; the plant is never
+/// restarted, and nothing is scheduled after its kill (the run ends there); the discovery server
+/// is restarted by the launcher itself. A partition needs the host linked, a heal needs it cut
+/// (by a partition or a kill-host). After a kill-host the processes' states are not followed
+/// (which processes a host holds is the launcher's placement). The agents' own faults (fault,
+/// clear) are not followed either: a second fault replaces the first, a clear of a healthy agent
+/// does nothing.
+std::optional<ScheduleProblem> schedule_problem(const std::vector<FaultSpec>& faults);
 
 /// True for the actions whose target is a host (kill-host, partition, heal).
 bool is_host_action(const std::string& action);
@@ -193,6 +214,11 @@ struct FieldInfo {
 
 /// Every field: the scenario's own, then those of a trajectory segment and of a fault.
 std::vector<FieldInfo> field_table();
+/// The fields of the `hosts` section (read by hand: a list of machines and placement rules).
+std::vector<FieldInfo> host_field_table();
+/// Every field a scenario file may hold: field_table() and host_field_table(), as `maptr
+/// fields` and docs/SCENARIO.md list them.
+std::vector<FieldInfo> reference_field_table();
 
 // ---- Command-line values, through the same table ----
 //
@@ -217,10 +243,9 @@ void set_field(Scenario& s, const std::string& path, const std::string& value, c
 /// Sets speed_mps of every segment that moves (type other than "stop"), checked against the
 /// segment table's range.
 void set_speed(Scenario& s, const std::string& value, const std::string& origin);
-
-/// The first resume (index into `faults`) with no earlier pause of its target still in force
-/// (faults in time order; a kill ends a pause); nullopt when every resume has its pause.
-std::optional<std::size_t> unmatched_resume(const std::vector<FaultSpec>& faults);
+/// Sets duration_s as set_field() does; a duration longer than the trajectory lengthens its
+/// last segment (`maptr run --duration`, `maptr compare --duration`).
+void set_duration(Scenario& s, const std::string& value, const std::string& origin);
 
 /// Agent names: L0..L{N/2-1}, R0.. ; parse returns false on a malformed name.
 std::string agent_name(int side, int index);

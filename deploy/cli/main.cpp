@@ -1,10 +1,11 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|level2|experiment|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|top|replay|plot`).
+// dispatches (`maptr run|fields|level2|experiment|compare|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|top|replay|plot`).
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
 
+#include "deploy/cli/fields_command.hpp"
 #include "deploy/cli/fleet_signal.hpp"
 #include "deploy/cli/fuzz_command.hpp"
 #include "deploy/cli/level2_command.hpp"
@@ -30,11 +31,15 @@ int main(int argc, char** argv) {
   SoakArgs soak_args;
   TopArgs top_args;
   auto* run = add_run_command(app, run_args);
+  FieldsArgs fields_args;
+  auto* fields = add_fields_command(app, fields_args);
   auto* level2 = add_level2_command(app, level2_args);
   ReachArgs reach_args;
   auto* reach = add_reach_command(app, reach_args);
   auto* experiment = add_experiment_command(app, experiment_args);
   auto* bench = add_bench_command(app, bench_args);
+  CompareArgs compare_args;
+  auto* compare = add_compare_command(app, compare_args);
   auto* fuzz = add_fuzz_command(app, fuzz_args);
   auto* kill = add_signal_command(app, "kill", kill_args);
   auto* restart = add_signal_command(app, "restart", restart_args);
@@ -65,8 +70,10 @@ int main(int argc, char** argv) {
   // still escapes (an unexpected error) is reported here instead of aborting the program.
   try {
     if (run->parsed()) return cmd_run(run_args, bin_dir(argv[0]));
+    if (fields->parsed()) return cmd_fields(fields_args);
     if (experiment->parsed()) return cmd_experiment(experiment_args, bin_dir(argv[0]));
     if (bench->parsed()) return cmd_bench(bench_args, bin_dir(argv[0]));
+    if (compare->parsed()) return cmd_compare(compare_args, bin_dir(argv[0]));
     if (fuzz->parsed()) return cmd_fuzz(fuzz_args, bin_dir(argv[0]));
     if (level2->parsed()) return cmd_level2(level2_args);
     if (reach->parsed()) return cmd_reach(reach_args);

@@ -63,6 +63,7 @@ void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::s
                                    : "expected TARGET@SECONDS, e.g. L3@120");
     config::FaultSpec f;
     f.action = action;
+    f.origin = "--" + action + " " + spec.substr(0, 80);
     if (action == "fault")
       read_fault_mode(spec, spec.substr(0, at), f);
     else
@@ -110,6 +111,11 @@ Scenario checked_scenario(const RunArgs& a) {
     if (!config::parse_agent_name(name, side, idx) || idx >= s.robot.per_side())
       throw ScenarioError("--external " + name + ": not an agent of this scenario (L0..L" +
                           std::to_string(s.robot.per_side() - 1) + ", R0..)");
+    for (const auto& f : s.faults)
+      if (f.target == name && !config::is_agent_fault_action(f.action))
+        throw ScenarioError((f.origin.empty() ? s.source + ": faults[]" : f.origin) + ": " + f.action + " of " + name +
+                            ": --external " + name + " is a process the launcher does not start, so it does not " +
+                            f.action + " it either");
   }
   return s;
 }
@@ -188,7 +194,7 @@ Scenario scenario_from(const RunArgs& a) {
   static const Override kOverrides[] = {
       {"--agents", "agents", &RunArgs::agents},          {"--gross-kg", "gross_mass_kg", &RunArgs::gross_kg},
       {"--motor", "motor", &RunArgs::motor},             {"--mode", "mode", &RunArgs::mode},
-      {"--duration", "duration_s", &RunArgs::duration},  {"--tick-hz", "tick_hz", &RunArgs::tick_hz},
+      {"--tick-hz", "tick_hz", &RunArgs::tick_hz},
       {"--trace-every", "trace_every", &RunArgs::trace_every}, {"--record", "record", &RunArgs::record},
       {"--tick-filter", "tick_filter", &RunArgs::tick_filter},
       {"--plant-priority", "plant_priority", &RunArgs::plant_priority},
@@ -197,13 +203,10 @@ Scenario scenario_from(const RunArgs& a) {
   for (const auto& o : kOverrides)
     if (!(a.*o.value).empty()) config::set_field(s, o.path, a.*o.value, o.option);
   if (!a.speed.empty()) config::set_speed(s, a.speed, "--speed");
+  if (!a.duration.empty()) config::set_duration(s, a.duration, "--duration");
   if (a.realtime) s.realtime = true;
-  // A longer --duration than the trajectory: the last segment goes on.
-  if (!a.duration.empty() && s.trajectory.total_duration() < s.duration_s)
-    s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
   if (a.hosts > 0) s.hosts.count = a.hosts;
   for (const auto& p : a.placement) s.hosts.placement.push_back(p);
-    const std::size_t from_file = s.faults.size();
   add_faults(s, a.kills, "kill");
   add_faults(s, a.restarts, "restart");
   add_faults(s, a.pauses, "pause");
@@ -213,16 +216,11 @@ Scenario scenario_from(const RunArgs& a) {
   add_faults(s, a.heals, "heal");
   add_faults(s, a.agent_faults, "fault");
   add_faults(s, a.clears, "clear");
-  if (const auto i = config::unmatched_resume(s.faults); i && *i >= from_file) {
-    const config::FaultSpec& f = s.faults[*i];
-    std::ostringstream at;
-    at << f.at_s;
-    throw ScenarioError("--resume " + f.target.substr(0, 80) + "@" + at.str() + ": faults[" +
-                        std::to_string(*i) + "].action = resume: needs an earlier --pause of " +
-                        f.target.substr(0, 80) + " (not yet resumed)");
-  }
   if (a.chaos >= 0)
-    for (const auto& f : chaos_schedule(static_cast<unsigned>(a.chaos), s)) s.faults.push_back(f);
+    for (auto f : chaos_schedule(static_cast<unsigned>(a.chaos), s)) {
+      f.origin = "--chaos " + std::to_string(a.chaos) + " (its " + f.action + " of " + f.target + ")";
+      s.faults.push_back(f);
+    }
   return s;
 }
 

@@ -66,6 +66,42 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
   return c;
 }
 
+CLI::App* add_compare_command(CLI::App& app, CompareArgs& a) {
+  auto* c = app.add_subcommand("compare",
+                               "run a scenario once per combination of field values (default: mode=ec,all) and "
+                               "compare energy, mileage, path and battery (compare.md, compare.csv, compare.png)");
+  c->add_option("scenario", a.c.scenario, "scenario YAML")->required();
+  c->add_option("--set", a.c.sets,
+                "FIELD=V1,V2,... : one variant per value (repeatable: every combination), e.g. mode=ec,all or "
+                "gross_mass_kg=20,30 (`maptr fields` lists the fields)");
+  c->add_option("--duration", a.c.duration, "simulated seconds of every variant (as maptr run --duration)");
+  c->add_option("--out", a.c.o.out, "output folder (default runs/<date>-compare-<scenario>); run again to resume");
+  c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")->check(CLI::Range(0, kMaxDomain));
+  return c;
+}
+
+int cmd_compare(CompareArgs a, const std::string& bin_dir) {
+  a.c.o.name = "compare";
+  a.c.o.bin_dir = bin_dir;
+  a.c.o.source_dir = source_dir();
+  a.c.o.domain = resolve_domain(a.domain);
+  try {
+    const auto variants = compare_variants(a.c);  // bad input: exit 2 before anything starts
+    if (a.c.o.out.empty()) a.c.o.out = unique_run_dir("runs", "compare-" + variants.front().s.name);
+  } catch (const config::ScenarioError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 2;
+  } catch (const model::ParamError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return 2;
+  }
+  std::string cmd = "maptr compare " + a.c.scenario;
+  for (const auto& s : a.c.sets) cmd += " --set " + s;
+  if (!a.c.duration.empty()) cmd += " --duration " + a.c.duration;
+  a.c.o.command = cmd + " --out " + a.c.o.out;
+  return run_compare(a.c);
+}
+
 int cmd_experiment(ExperimentArgs a, const std::string& bin_dir) {
   a.o.bin_dir = bin_dir;
   a.o.source_dir = source_dir();

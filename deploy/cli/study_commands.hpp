@@ -1,16 +1,22 @@
 #pragma once
-// `maptr experiment NAME` and `maptr bench scale|tick`: their options and how the defaults
+// `maptr experiment NAME`, `maptr compare SCENARIO` and `maptr bench scale|tick`: their options and how the defaults
 // (output folder, domain, fleet sizes) are filled in.
 #include <CLI/CLI.hpp>
 #include <string>
 
 #include "deploy/bench/bench.hpp"
+#include "deploy/experiments/compare.hpp"
 #include "deploy/experiments/experiments.hpp"
 
 namespace maptr::deploy::cli {
 
 struct ExperimentArgs {
   ExperimentOptions o;
+  int domain = -1;
+};
+
+struct CompareArgs {
+  CompareOptions c;
   int domain = -1;
 };
 
@@ -22,6 +28,8 @@ struct BenchArgs {
 
 CLI::App* add_experiment_command(CLI::App& app, ExperimentArgs& a);
 CLI::App* add_bench_command(CLI::App& app, BenchArgs& a);
+CLI::App* add_compare_command(CLI::App& app, CompareArgs& a);
+int cmd_compare(CompareArgs a, const std::string& bin_dir);
 
 int cmd_experiment(ExperimentArgs a, const std::string& bin_dir);
 int cmd_bench(BenchArgs a, const std::string& bin_dir);

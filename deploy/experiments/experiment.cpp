@@ -143,8 +143,7 @@ void Experiment::write(const report::Table& t, const std::string& md_intro, cons
   report::write_file(o_.out + "/summary.json", s.dump(2) + "\n");
 }
 
-bool Experiment::plot(const std::string& stem, const std::string& body) {
-  const report::PlotFrame frame{"900,600", ",11"};
+bool Experiment::plot(const std::string& stem, const std::string& body, const report::PlotFrame& frame) {
   const std::string comment = "made by `" + command() + "`; run in this folder: gnuplot " + stem + ".gp";
   if (!report::draw_plot(o_.out, stem, comment, frame,
                          "set datafile columnheaders\nset grid\nset key outside right top\n" + body))
@@ -154,6 +153,7 @@ bool Experiment::plot(const std::string& stem, const std::string& body) {
 }
 
 std::string Experiment::command() const {
+  if (!o_.command.empty()) return o_.command;
   return "maptr experiment " + o_.name + (o_.quick ? " --quick" : "") +
          (o_.tick_hz > 0 ? " --tick-hz " + fixed(o_.tick_hz, 0) : "") + " --out " + o_.out;
 }

@@ -16,6 +16,7 @@
 #include "config/scenario.hpp"
 #include "deploy/experiments/experiments.hpp"
 #include "deploy/experiments/run.hpp"
+#include "deploy/report/gnuplot.hpp"
 #include "deploy/report/table.hpp"
 
 namespace maptr::deploy {
@@ -45,7 +46,8 @@ class Experiment {
              nlohmann::json extra = nlohmann::json::object());
 
   /// Writes STEM.gp next to STEM.png and runs gnuplot in the output folder.
-  bool plot(const std::string& stem, const std::string& body);
+  bool plot(const std::string& stem, const std::string& body,
+            const report::PlotFrame& frame = report::PlotFrame{"900,600", ",11"});
   const std::vector<std::string>& plots() const { return plots_; }
 
   std::string command() const;

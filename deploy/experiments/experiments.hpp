@@ -14,6 +14,7 @@ struct ExperimentOptions {
   std::string source_dir;  ///< project source (deploy/scenarios/default.yaml)
   int domain = 0;          ///< DDS domain id for every run
   double tick_hz = 0;      ///< Level-1 / plant tick rate; 0: the experiment's default
+  std::string command;     ///< the command line the files name ("": maptr experiment NAME ...)
 };
 
 /// The tick rate an experiment runs at unless told otherwise: 100 Hz (the scenario default) for

@@ -39,6 +39,7 @@ void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, cons
   const double t_end = rows.empty() ? 0.0 : rows.back().t;
   for (std::size_t i = 0; i < failures.size(); ++i) {
     auto& f = failures[i];
+    if (f.contains("skipped")) continue;  // it did not happen: nothing to detect or recover from
     const double at = f.value("at_s", 0.0);
     const std::string target = f.value("target", "");
     // A restart, a resume or a heal is detected when the target answers again; a kill, a pause or
@@ -66,7 +67,7 @@ void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, cons
     // Recovery window: until the next fault (or the end of the run).
     double until = t_end + 1.0;
     for (std::size_t k = 0; k < failures.size(); ++k)
-      if (k != i && failures[k].value("at_s", 0.0) > at)
+      if (k != i && !failures[k].contains("skipped") && failures[k].value("at_s", 0.0) > at)
         until = std::min(until, failures[k].value("at_s", 0.0));
     double max_err = 0.0, last_out = -1.0, last_in = -1.0;
     for (const auto& r : rows) {

@@ -64,15 +64,17 @@ std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scena
   }
   std::mt19937 fault_rng(seed ^ 0x85ebca6bu);
   const double rated = s.robot.motor.rated_voltage_V;
-  const config::FaultSpec modes[] = {{"", "fault", 0, "open", 0},      {"", "fault", 0, "short", 0},
-                                     {"", "fault", 0, "torque", 0.5},  {"", "fault", 0, "resistance", 3},
-                                     {"", "fault", 0, "stuck", rated / 2}, {"", "fault", 0, "sensor", 5},
-                                     {"", "fault", 0, "erratic", 2},   {"", "fault", 0, "liar", 0}};
+  const std::pair<const char*, double> modes[] = {{"open", 0},       {"short", 0},  {"torque", 0.5},
+                                                  {"resistance", 3}, {"stuck", rated / 2}, {"sensor", 5},
+                                                  {"erratic", 2},    {"liar", 0}};
   std::uniform_int_distribution<int> agent(0, s.robot.agents - 1), mode(0, 7);
   for (int i = 0; i < o.agent_faults; ++i) {
     const int a = agent(fault_rng);
-    config::FaultSpec f = modes[mode(fault_rng)];
-    f.target = config::agent_name(a / s.robot.per_side(), a % s.robot.per_side());
+    const auto& [m, v] = modes[mode(fault_rng)];
+    config::FaultSpec f = config::FaultSpec::of(config::agent_name(a / s.robot.per_side(), a % s.robot.per_side()),
+                                                "fault", 0.0);
+    f.mode = m;
+    f.value = v;
     f.at_s = std::round(when(fault_rng) * 100.0) / 100.0;
     out.push_back(f);
     out.push_back(config::FaultSpec::of(f.target, "clear",

@@ -210,13 +210,42 @@ nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded, 
 namespace maptr::deploy {
 
 namespace {
-/// The console's lines on the agents' own faults: what became of each, and false detections.
+/// The console's line on a process's or a host's fault (kill, restart, pause, resume,
+/// kill-host, partition, heal): when the plant saw it, when the speed came back, or why it was
+/// skipped.
+std::string process_fault_line(const nlohmann::json& f) {
+  const auto num = [&f](const char* k) { return f.contains(k) && f[k].is_number() ? f[k].get<double>() : -1.0; };
+  char buf[512];
+  std::string what;
+  if (f.contains("skipped")) {
+    what = "skipped: " + f.value("skipped", std::string());
+  } else {
+    const bool back = f.value("action", "") == "restart" || f.value("action", "") == "resume" ||
+                      f.value("action", "") == "heal";
+    what = num("detected_s") >= 0.0
+               ? std::string(back ? "answered again" : "seen by the plant") + " at " + model::param_value(num("detected_s")) + " s"
+               : std::string(back ? "NEVER ANSWERED AGAIN" : "never seen by the plant");
+    what += num("recovered_s") >= 0.0 ? ", speed back in band at " + model::param_value(num("recovered_s")) + " s"
+                                      : ", speed out of band until the next fault or the end";
+    std::snprintf(buf, sizeof(buf), "; max speed error %.2f %%", num("max_speed_error_pct"));
+    what += buf;
+  }
+  std::snprintf(buf, sizeof(buf), "%-11s %s at %.2f s: %s\n", f.value("action", "").c_str(), f.value("target", "").c_str(),
+                num("at_s"), what.c_str());
+  return buf;
+}
+
+/// The console's lines on every fault of the run, in time order: what became of each, and the
+/// false detections of the agents' own faults.
 std::string fault_lines(const nlohmann::json& s) {
   std::ostringstream os;
   char buf[512];
   // The agents' own faults: what became of each.
   for (const auto& f : s.value("failures", nlohmann::json::array())) {
-    if (f.value("action", "") != "fault") continue;
+    if (f.value("action", "") != "fault") {
+      os << process_fault_line(f);
+      continue;
+    }
     const auto num = [&f](const char* k) { return f.contains(k) && f[k].is_number() ? f[k].get<double>() : -1.0; };
     std::string mode = f.value("mode", "");
     if (f.value("value", 0.0) != 0.0) mode += "=" + model::param_value(f.value("value", 0.0));

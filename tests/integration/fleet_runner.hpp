@@ -11,6 +11,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +21,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "records/summary_fields.hpp"
 
 namespace maptr::testing {
 
@@ -135,6 +139,12 @@ inline CliResult run_cli(std::vector<std::string> args, const std::string& run_d
   std::filesystem::remove(log);
   std::ifstream js(run_dir + "/summary.json");
   if (js) js >> r.summary;
+  // Every key a run writes is in docs/SUMMARY.md (records/summary_fields.cpp). An experiment's
+  // or a comparison's summary.json is another file: only a run's (it has a status and a plant).
+  if (r.summary.is_object() && r.summary.contains("status") && r.summary.contains("processes") &&
+      !r.summary.contains("rows"))
+    for (const auto& k : maptr::records::undocumented_summary_keys(r.summary))
+      ADD_FAILURE() << run_dir << "/summary.json: key " << k << " is not in docs/SUMMARY.md (records/summary_fields.cpp)";
   return r;
 }
 

@@ -261,3 +261,48 @@ TEST(Experiments, UnknownNameExitsWith2AndListsTheExperiments) {
   for (const char* n : {"table-pow", "weights", "voltages", "agents", "battery", "wear", "failures", "turns", "faults"})
     EXPECT_NE(r.output.find(n), std::string::npos) << n << " missing from: " << r.output;
 }
+
+// compare: the user's own scenario, EC against NO, in one command; each variant's energy is
+// that of a separate `maptr run` of the same settings to the last digit; a second call reuses
+// both fleets; a bad --set is refused before anything starts.
+TEST(Experiments, CompareRunsEachVariantAsMaptrRunDoesAndResumes) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/compare";
+  const std::string scenario = std::string(MAPTR_SOURCE_DIR) + "/deploy/scenarios/default.yaml";
+  const std::string domain = std::to_string(private_domain());
+  auto r = run_cli({"compare", scenario, "--duration", "10", "--out", out, "--domain", domain}, out, 600);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = r.summary["rows"];
+  ASSERT_EQ(rows.size(), 2u) << r.summary.dump(2);
+  EXPECT_EQ(rows[0]["variant"], "mode=ec");
+  EXPECT_EQ(rows[1]["variant"], "mode=all");
+  for (const char* f : {"compare.md", "compare.csv", "summary.json", "compare.png"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  EXPECT_TRUE(is_png(out + "/compare.png"));
+  EXPECT_EQ(num(rows[0], "saving_pct"), 0.0);
+  EXPECT_GT(num(rows[1], "saving_pct"), -100.0);
+  const char* modes[] = {"ec", "all"};
+  for (int i = 0; i < 2; ++i) {
+    const std::string run = tmp.path() + "/run-" + modes[i];
+    auto single = run_cli(run_args(run, {scenario, "--mode", modes[i], "--duration", "10"}), run, 300);
+    ASSERT_EQ(single.exit_code, 0) << single.output;
+    EXPECT_EQ(rows[i]["energy_J"].get<double>(), single.summary["energy_J"].get<double>()) << modes[i];
+    EXPECT_EQ(rows[i]["trace_sha256"], single.summary["trace_sha256"]) << modes[i];
+  }
+  // Again into the same folder: both variants reused, the same table.
+  auto again = run_cli({"compare", scenario, "--duration", "10", "--out", out, "--domain", domain}, out, 300);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(again.summary["rows"], rows);
+  for (const auto& run : again.summary["runs"]) EXPECT_TRUE(run["reused"].get<bool>()) << run.dump();
+  // A field that is not one, and a value outside its range: exit 2, the option named, no folder.
+  for (const auto& [set, words] : {std::pair<std::string, std::string>{"colour=red,blue", "colour"},
+                                   std::pair<std::string, std::string>{"gross_mass_kg=20,-5", "-5"}}) {
+    const std::string bad = tmp.path() + "/bad";
+    auto b = run_cli({"compare", scenario, "--set", set, "--out", bad}, bad, 60);
+    EXPECT_EQ(b.exit_code, 2) << b.output;
+    EXPECT_NE(b.output.find("--set " + set), std::string::npos) << b.output;
+    EXPECT_NE(b.output.find(words), std::string::npos) << b.output;
+    EXPECT_FALSE(fs::exists(bad));
+  }
+}

@@ -304,6 +304,56 @@ TEST(Fleet, BadCommandLineValuesAreRefusedLikeScenarioFields) {
   }
 }
 
+TEST(Fleet, AContradictoryScheduleIsRefusedBeforeAnythingStartsNamingTheOption) {
+  TempDir tmp;
+  struct Case {
+    std::vector<std::string> args;
+    const char* option;  // the option named first
+    const char* why;
+  } cases[] = {
+      {{"--kill", "L3@100"}, "--kill L3@100: faults[].at_s = 100", "after the end of the run (duration_s = 60 s)"},
+      {{"--restart", "L3@20"}, "--restart L3@20: faults[].action = restart", "needs an earlier kill of L3"},
+      {{"--kill", "L3@10", "--kill", "L3@12"}, "--kill L3@12: faults[].action = kill", "dead by then (killed at 10 s"},
+      {{"--kill", "plant@10", "--restart", "plant@20"}, "--restart plant@20", "after the plant's kill at 10 s"},
+      {{"--pause", "central@10", "--pause", "central@12"}, "--pause central@12", "paused by then"},
+  };
+  int i = 0;
+  for (const auto& c : cases) {
+    const std::string out = tmp.path() + "/run" + std::to_string(i++);
+    std::vector<std::string> args = {"--duration", "60"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    auto r = run_cli(run_args(out, args), out, 30);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(c.option), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.why), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "a refused schedule must not start a run";
+  }
+  // The same in a file names the file's entry.
+  const std::string file = tmp.path() + "/restart.yaml";
+  write_file(file,
+             "name: restart\nduration_s: 10\ntrajectory:\n  segments:\n    - {type: straight, speed_mps: 1, "
+             "duration_s: 10}\nfaults:\n  - {target: L1, action: restart, at_s: 5}\n");
+  auto r = run_cli(run_args(tmp.path() + "/file-run", {file}), tmp.path() + "/file-run", 30);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("restart.yaml: faults[0].action = restart: a restart needs an earlier kill of L1"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(Fleet, FieldsPrintsTheScenarioReferenceAndRefusesAnUnknownPrefix) {
+  TempDir tmp;
+  auto r = run_cli({"fields", "control."}, tmp.path() + "/none", 30);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("control.t_on_s"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("robot.track_m"), std::string::npos) << r.output;
+  r = run_cli({"fields", "--summary", "failures[]."}, tmp.path() + "/none", 30);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("failures[].detected_s"), std::string::npos) << r.output;
+  r = run_cli({"fields", "colour"}, tmp.path() + "/none", 30);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("no scenario field starts with 'colour'"), std::string::npos) << r.output;
+}
+
 TEST(Fleet, ABadFleetEnvironmentVariableIsRefusedBeforeAnythingStarts) {
   TempDir tmp;
   const std::string out = tmp.path() + "/run";

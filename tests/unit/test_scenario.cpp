@@ -345,8 +345,8 @@ TEST(Scenario, ToYamlReadsBackIdentical) {
       "battery: {initial_discharge_mAh: 6000, h: -1.851e-14}\ncontrol: {kp: 0.7, ki: 1.3, oracle: true}\n"
       "trajectory:\n  accel_mps2: 0.5\n  segments:\n    - {type: straight, speed_mps: 1.5, duration_s: 10}\n"
       "    - {type: arc, speed_mps: 1, radius_m: -3, duration_s: 10}\n    - {type: stop, duration_s: 5}\n"
-      "faults:\n  - {target: L3, action: kill, at_s: 5}\n  - {target: group-R, action: restart, at_s: "
-      "7.25}\n";
+      "faults:\n  - {target: L3, action: kill, at_s: 5}\n  - {target: group-R, action: kill, at_s: 6}\n"
+      "  - {target: group-R, action: restart, at_s: 7.25}\n";
   for (const Scenario& s : {parse_scenario(text, "t"), Scenario{}}) {
     const std::string y = to_yaml(s);
     const Scenario back = parse_scenario(y, "t");

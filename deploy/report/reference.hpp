@@ -1,0 +1,19 @@
+#pragma once
+// The references a user reads instead of the source: every scenario field (config's field
+// table) and every summary.json key (records' key table), as text for the terminal or as a
+// markdown table. `maptr fields` prints them; docs/SCENARIO.md and docs/SUMMARY.md are
+// generated from them (a unit test fails when a committed file differs).
+#include <string>
+
+namespace maptr::deploy::report {
+
+/// The scenario fields whose path starts with `prefix` ("" for all): path, type, default,
+/// allowed values, unit and description. Markdown: the whole docs/SCENARIO.md.
+std::string scenario_reference(const std::string& prefix, bool markdown);
+/// The summary.json keys whose path starts with `prefix`. Markdown: the whole docs/SUMMARY.md.
+std::string summary_reference(const std::string& prefix, bool markdown);
+/// How many scenario fields (or summary keys) start with `prefix`.
+int scenario_field_count(const std::string& prefix);
+int summary_key_count(const std::string& prefix);
+
+}  // namespace maptr::deploy::report

@@ -1,0 +1,103 @@
+// The references a user reads instead of the source: docs/SCENARIO.md and docs/SUMMARY.md are
+// what `maptr fields --markdown` prints, every key of every example scenario is in the scenario
+// reference, and summary.json's key patterns match the keys a run writes.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "config/scenario.hpp"
+#include "deploy/report/reference.hpp"
+#include "records/summary_fields.hpp"
+
+namespace {
+
+std::string read(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+TEST(Reference, TheCommittedScenarioReferenceIsTheFieldTable) {
+  const std::string doc = std::string(MAPTR_SOURCE_DIR) + "/docs/SCENARIO.md";
+  EXPECT_EQ(read(doc), maptr::deploy::report::scenario_reference("", true))
+      << "docs/SCENARIO.md differs from the field table: build/bin/maptr fields --markdown > docs/SCENARIO.md";
+}
+
+TEST(Reference, TheCommittedSummaryReferenceIsTheKeyTable) {
+  const std::string doc = std::string(MAPTR_SOURCE_DIR) + "/docs/SUMMARY.md";
+  EXPECT_EQ(read(doc), maptr::deploy::report::summary_reference("", true))
+      << "docs/SUMMARY.md differs from the key table: build/bin/maptr fields --summary --markdown > docs/SUMMARY.md";
+}
+
+/// Every key path of a YAML node: maps joined with '.', a list's entries as "[]". A path the
+/// table holds is a leaf even when its value is a list (a waypoint segment's points).
+void key_paths(const YAML::Node& n, const std::string& path, const std::set<std::string>& known,
+               std::set<std::string>& out) {
+  if (!path.empty() && known.count(path)) {
+    out.insert(path);
+    return;
+  }
+  if (n.IsMap()) {
+    for (auto it = n.begin(); it != n.end(); ++it)
+      key_paths(it->second, path.empty() ? it->first.Scalar() : path + "." + it->first.Scalar(), known, out);
+  } else if (n.IsSequence()) {
+    for (const auto& e : n) key_paths(e, path + "[]", known, out);
+  } else {
+    out.insert(path);
+  }
+}
+
+TEST(Reference, EveryKeyOfEveryExampleScenarioIsInTheReference) {
+  std::set<std::string> known;
+  for (const auto& f : maptr::config::reference_field_table()) known.insert(f.path);
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(MAPTR_SOURCE_DIR) + "/deploy/scenarios")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++files;
+    std::set<std::string> keys;
+    key_paths(YAML::LoadFile(e.path().string()), "", known, keys);
+    for (const auto& k : keys) EXPECT_TRUE(known.count(k)) << e.path().filename() << ": " << k << " is not in maptr fields";
+  }
+  EXPECT_GE(files, 3);
+  // And the reference shows each of them.
+  const std::string text = maptr::deploy::report::scenario_reference("", false);
+  for (const auto& k : known) EXPECT_NE(text.find(k), std::string::npos) << k;
+}
+
+TEST(Reference, APrefixSelectsItsFieldsOnly) {
+  const std::string control = maptr::deploy::report::scenario_reference("control.", false);
+  EXPECT_NE(control.find("control.t_on_s"), std::string::npos);
+  EXPECT_EQ(control.find("robot.track_m"), std::string::npos);
+  EXPECT_EQ(maptr::deploy::report::scenario_field_count("no.such."), 0);
+  EXPECT_GT(maptr::deploy::report::scenario_field_count("faults[]."), 4);
+}
+
+TEST(Reference, SummaryPatternsMatchRuntimeNamesOnly) {
+  using maptr::records::summary_path_matches;
+  EXPECT_TRUE(summary_path_matches("rejected_samples.<process>", "rejected_samples.L3"));
+  EXPECT_TRUE(summary_path_matches("plant.tick_timing_us.<part>.p90", "plant.tick_timing_us.barrier.p90"));
+  EXPECT_TRUE(summary_path_matches("failures[].at_s", "failures[].at_s"));
+  EXPECT_TRUE(summary_path_matches("recording.recorded.<topic>", "recording.recorded.maptr/tick"));
+  EXPECT_FALSE(summary_path_matches("rejected_samples.<process>", "rejected_samples"));
+  EXPECT_FALSE(summary_path_matches("rejected_samples.<process>", "rejected_samples.L3.extra"));
+  EXPECT_FALSE(summary_path_matches("failures[].at_s", "failures.at_s"));
+  EXPECT_FALSE(summary_path_matches("energy_J", "energy_j"));
+}
+
+TEST(Reference, EverySummaryKeyHasATypeAndADescriptionAndIsListedOnce) {
+  std::set<std::string> seen;
+  for (const auto& f : maptr::records::summary_fields()) {
+    SCOPED_TRACE(f.path);
+    EXPECT_FALSE(f.type.empty());
+    EXPECT_FALSE(f.description.empty());
+    EXPECT_TRUE(seen.insert(f.path).second) << "listed twice";
+  }
+  EXPECT_GE(seen.size(), 100u);
+}
+
+}  // namespace
