@@ -282,14 +282,27 @@ bool documented(const std::string& path) {
   return false;
 }
 
-/// A scalar, null or empty object must be documented under its path; an empty list under its
-/// path or its entries' ("a" or "a[]"); a list's entries are looked into as "a[]".
+/// An empty object or list is documented when it is an entry itself or holds documented keys:
+/// some entry's path begins with it ("recording.incomplete" for "recording.incomplete.<topic>.recorded").
+bool documented_container(const std::string& path) {
+  if (documented(path) || documented(path + "[]")) return true;
+  for (const auto& f : summary_fields())
+    for (std::size_t cut = f.path.find_first_of(".["); cut != std::string::npos;
+         cut = f.path.find_first_of(".[", cut + 1)) {
+      const std::string head = f.path.substr(0, cut);
+      if (summary_path_matches(head, path)) return true;
+    }
+  return false;
+}
+
+/// A scalar or null must be documented under its path, an empty object or list as a container;
+/// a list's entries are looked into as "a[]".
 void collect_undocumented(const nlohmann::json& j, const std::string& path, std::vector<std::string>& out) {
   if (j.is_object() && !j.empty()) {
     for (const auto& [k, v] : j.items()) collect_undocumented(v, path.empty() ? k : path + "." + k, out);
   } else if (j.is_array() && !j.empty()) {
     for (const auto& e : j) collect_undocumented(e, path + "[]", out);
-  } else if (!documented(path) && !(j.is_array() && documented(path + "[]"))) {
+  } else if ((j.is_object() || j.is_array()) ? !documented_container(path) : !documented(path)) {
     out.push_back(path);
   }
 }
