@@ -21,6 +21,9 @@ struct BenchOptions {
   std::vector<int> touch_kb{0, 128, 512};  ///< floor: KiB each worker touches per round
   std::string tick_filter = "auto";  ///< auto (a run's default: on in ec, off in all), true or false
   int plant_priority = -1;  ///< SCHED_FIFO priority of the plant's lock-step thread (-1: a run's default)
+  double min_rtf = -1;          ///< scale: a size whose real-time factor is lower misses (-1: not checked)
+  double max_floor_ratio = -1;  ///< scale: a size whose tick / floor is higher misses (-1: not checked)
+  std::string junit;            ///< scale: JUnit XML written here, one case per size and mode ("": none)
 };
 
 int run_bench(const BenchOptions& o);

@@ -13,9 +13,11 @@
 #include "deploy/bench/floor.hpp"
 #include "deploy/bench/memory.hpp"
 #include "deploy/bench/proc_stats.hpp"
+#include "deploy/bench/scale_verdict.hpp"
 #include "deploy/experiments/isolated_launch.hpp"
 #include "deploy/report/gnuplot.hpp"
 #include "deploy/report/table.hpp"
+#include "records/junit.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::deploy {
@@ -179,6 +181,7 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"tick_filter", s.uses_tick_filter() ? "yes" : "no"},
       {"plant_scheduling", sum.data().value("plant", json::object()).value("loop_scheduling", "")},
       {"hosts", hosts},
+      {"wall_s", wall},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},
       {"status_text", status.size() > kStatusMdChars ? status.substr(0, kStatusMdChars) + "..." : status},
@@ -227,7 +230,10 @@ int bench_scale(const BenchOptions& o) {
   t.cols = columns();
   std::ofstream csv(o.out + "/scale.csv");
   csv << t.csv_header() << std::flush;
-  int worst = 0;
+  const ScaleThresholds limits{o.min_rtf, o.max_floor_ratio};
+  std::vector<std::string> headlines;
+  std::vector<records::JunitCase> cases;
+  int missed = 0;
   std::vector<int> host_counts = {1};
   if (o.hosts > 1) host_counts.push_back(o.hosts);
   for (const std::string& mode : o.modes)  // a mode's rows together: its curves are unbroken
@@ -238,18 +244,26 @@ int bench_scale(const BenchOptions& o) {
         const json row = measure(o, n, mode, hosts);
         csv << t.csv_row(row) << std::flush;  // a later size that fails leaves the earlier rows
         t.rows.push_back(row);
-        const std::string status = row["status_full"];
-        std::cerr << " " << status << ", discovery " << row["discovery_s"].get<double>() << " s, RTF "
-                  << row["real_time_factor"].get<double>() << ", tick " << row["tick_median_us"].get<double>()
-                  << " µs = " << row["x_floor"].get<double>() << " x floor ("
-                  << row["floor_median_us"].get<double>() << " µs), CPU steal "
-                  << row["steal_pct_fleet"].get<double>() << " %\n";
-        if (status != "ok") worst = 1;
+        std::cerr << " CPU steal " << row["steal_pct_fleet"].get<double>() << " %\n";
+        const auto misses = scale_misses(row, limits);
+        headlines.push_back(scale_headline(row, misses));
+        std::cerr << "maptr: " << headlines.back() << "\n";
+        std::string failure;
+        for (const auto& m : misses) failure += (failure.empty() ? "" : "; ") + m;
+        cases.push_back({"N" + std::to_string(n) + "-" + mode + (hosts > 1 ? "-hosts" + std::to_string(hosts) : ""),
+                         "maptr.bench.scale", row.value("wall_s", 0.0), failure});
+        missed += !misses.empty();
       }
   report::write_file(o.out + "/scale.md", t.md());
   plot(o.out);
-  std::cout << t.md() << "results: " << o.out << "/scale.csv, scale.md, scale.png\n";
-  return worst;
+  if (!o.junit.empty()) report::write_file(o.junit, records::junit_xml("maptr bench scale", cases));
+  for (const auto& h : headlines) std::cout << h << "\n";
+  std::cout << "bench scale: " << cases.size() - missed << " of " << cases.size() << " sizes pass";
+  if (o.min_rtf >= 0) std::cout << ", --min-rtf " << o.min_rtf;
+  if (o.max_floor_ratio >= 0) std::cout << ", --max-floor-ratio " << o.max_floor_ratio;
+  std::cout << "\nresults: " << o.out << "/scale.csv, scale.md (every column), scale.png"
+            << (o.junit.empty() ? "" : ", " + o.junit) << "\n";
+  return missed > 0 ? 1 : 0;
 }
 
 }  // namespace maptr::deploy

@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|fields|level2|experiment|compare|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|top|replay|plot`).
+// dispatches (`maptr run|fields|level2|experiment|compare|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|top|ps|replay|plot`).
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <exception>
@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   SignalArgs kill_args, restart_args, pause_args, resume_args, kill_host_args, partition_args, heal_args;
   SoakArgs soak_args;
   TopArgs top_args;
+  PsArgs ps_args;
   auto* run = add_run_command(app, run_args);
   FieldsArgs fields_args;
   auto* fields = add_fields_command(app, fields_args);
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
   auto* kill = add_signal_command(app, "kill", kill_args);
   auto* restart = add_signal_command(app, "restart", restart_args);
   auto* top = add_top_command(app, top_args);
+  auto* ps = add_ps_command(app, ps_args);
   ReplayArgs replay_args;
   PlotArgs plot_args;
   auto* replay = add_replay_command(app, replay_args);
@@ -80,6 +82,7 @@ int main(int argc, char** argv) {
     if (kill->parsed()) return cmd_signal("kill", kill_args);
     if (restart->parsed()) return cmd_signal("restart", restart_args);
     if (top->parsed()) return cmd_top(top_args, bin_dir(argv[0]));
+    if (ps->parsed()) return cmd_ps(ps_args);
     if (replay->parsed()) return cmd_replay(replay_args);
     if (plot->parsed()) return cmd_plot(plot_args);
     if (pause->parsed()) return cmd_signal("pause", pause_args);

@@ -63,6 +63,12 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
                 "scheduling")
       ->check(CLI::Range(0, 99));
   c->add_flag("--replot", a.o.replot, "scale: redraw scale.png from the scale.csv in --out, run nothing");
+  c->add_option("--min-rtf", a.o.min_rtf, "scale: a size whose real-time factor is below this misses (exit 1)")
+      ->check(CLI::NonNegativeNumber);
+  c->add_option("--max-floor-ratio", a.o.max_floor_ratio,
+                "scale: a size whose median tick is more than this many times the IPC floor's misses (exit 1)")
+      ->check(CLI::PositiveNumber);
+  c->add_option("--junit", a.o.junit, "scale: write JUnit XML here, one test case per size and mode");
   return c;
 }
 

@@ -103,7 +103,7 @@ int watch_replay(const std::string& run_dir, const TopArgs& a, const std::string
 
 CLI::App* add_top_command(CLI::App& app, TopArgs& a) {
   auto* c = app.add_subcommand("top", "live view of a running fleet (q quits)");
-  c->add_option("--run", a.run_dir, "run folder (default: the newest running one under runs/)");
+  c->add_option("--run", a.run_dir, "run folder (default: the newest running fleet, `maptr ps`)");
   c->add_flag("--once", a.once, "print one plain-text snapshot and exit");
   c->add_option("--timeout", a.timeout_s, "--once: seconds to wait for the fleet's first tick")
       ->check(CLI::PositiveNumber);
@@ -118,7 +118,7 @@ CLI::App* add_top_command(CLI::App& app, TopArgs& a) {
 int cmd_top(const TopArgs& a, const std::string& bin_dir) {
   const std::string run_dir = a.run_dir.empty() ? latest_live_run() : a.run_dir;
   if (run_dir.empty()) {
-    std::cerr << "maptr: no running fleet found under runs/ (give its folder with --run DIR)\n";
+    std::cerr << "maptr: " << kNoRunningFleet << "\n";
     return kExitBadInput;
   }
   top::FleetCoordinates c;

@@ -349,6 +349,7 @@ void Fleet::start_processes() {
   spawn_wave(waves_->first());
   print_external_commands();
   fifo_ = std::make_unique<ControlFifo>(o_.run_dir);
+  registration_ = std::make_unique<FleetRegistration>(o_.run_dir, sc_.name, o_.domain);
   log_.info("launching {} processes in waves (discovery {})", kids_.size(),
             ds_.empty() ? std::string("simple, secure domain") : "server " + dds_.discovery_server);
   if (o_.progress)
@@ -461,6 +462,7 @@ void Fleet::end() {
   if (zygote_) log_.info("the zygote forked {} agents ({} requests failed)", zygote_->forked(), zygote_->failed());
   zygote_.reset();
   stop_recorder();
+  registration_.reset();
   fifo_.reset();
   participant_.reset();
   if (comm::participant_left_open())

@@ -23,6 +23,7 @@
 #include "deploy/fleet/launcher.hpp"
 #include "deploy/fleet/plant_clock.hpp"
 #include "deploy/fleet/ready_check.hpp"
+#include "deploy/fleet/registry.hpp"
 #include "deploy/fleet/stall_watch.hpp"
 #include "deploy/fleet/summary.hpp"
 #include "deploy/fleet/waves.hpp"
@@ -135,6 +136,7 @@ class Fleet {
   std::unique_ptr<LaunchWaves> waves_;
   std::unique_ptr<Zygote> zygote_;  ///< forks the agents on this machine (none: exec)
   std::unique_ptr<ControlFifo> fifo_;
+  std::unique_ptr<FleetRegistration> registration_;  ///< `maptr ps` finds the fleet while it runs
   FaultSchedule schedule_;
   PlantClock clock_;
   StallWatch stall_;

@@ -10,6 +10,7 @@
 using maptr::testing::CliResult;
 using maptr::testing::run_args;
 using maptr::testing::run_cli;
+using maptr::testing::private_domain;
 using maptr::testing::TempDir;
 
 TEST(Fleet, SixtyFourAgentProcessesJoinAndFinish) {
@@ -45,4 +46,44 @@ TEST(Bench, TheFloorBenchWritesOneRowPerSizeAndWorkingSet) {
   const CliResult bad = run_cli({"bench", "floor", "--agents", "-3", "--out", out + "-bad"}, out + "-bad", 60);
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("'-3' is not a positive number"), std::string::npos) << bad.output;
+}
+
+// bench scale answers: a size that misses --min-rtf makes it exit 1, its headline says MISS with
+// the figure and the bound, and the JUnit file names the failing case (read by Python's XML
+// parser, with the attributes the JUnit schema requires).
+TEST(Bench, TheScaleBenchFailsASizeThatMissesItsThresholdAndSaysSoInJUnit) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/scale", junit = tmp.path() + "/scale.xml";
+  const CliResult r = run_cli({"bench", "scale", "--agents", "8", "--modes", "ec", "--duration", "5", "--min-rtf",
+                               "1000000", "--junit", junit, "--out", out, "--domain", std::to_string(private_domain())},
+                              out, 600);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("N=8 ec, 1 host: ok"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("MISS (RTF"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("< --min-rtf 1e+06"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("bench scale: 0 of 1 sizes pass"), std::string::npos) << r.output;
+  const std::string check =
+      "python3 -c \"import sys, xml.etree.ElementTree as E\n"
+      "s = E.parse(sys.argv[1]).getroot()\n"
+      "assert s.tag == 'testsuite' and all(k in s.attrib for k in ('name', 'tests', 'failures'))\n"
+      "c = s.findall('testcase')\n"
+      "assert s.attrib['tests'] == '1' and s.attrib['failures'] == '1' and len(c) == 1\n"
+      "assert all(k in c[0].attrib for k in ('name', 'classname', 'time'))\n"
+      "f = c[0].find('failure')\n"
+      "print(c[0].attrib['name'], f.attrib['message'])\" " + junit + " 2>&1";
+  std::string printed;
+  if (FILE* p = popen(check.c_str(), "r")) {
+    char buf[512];
+    while (fgets(buf, sizeof(buf), p)) printed += buf;
+    EXPECT_EQ(pclose(p), 0) << printed;
+  }
+  EXPECT_NE(printed.find("N8-ec RTF"), std::string::npos) << printed;
+  // The same bench with a bound it meets passes.
+  const std::string out2 = tmp.path() + "/scale2";
+  const CliResult ok = run_cli({"bench", "scale", "--agents", "8", "--modes", "ec", "--duration", "5", "--min-rtf", "0.001",
+                                "--out", out2, "--domain", std::to_string(private_domain())},
+                               out2, 600);
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("bench scale: 1 of 1 sizes pass"), std::string::npos) << ok.output;
 }

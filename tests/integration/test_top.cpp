@@ -101,10 +101,50 @@ TEST(Top, OnceShowsTheKilledAgentDeadAndFifteenLive) {
 
 TEST(Top, NoFleetIsAClearError) {
   TempDir tmp;
-  const std::string r = shell("cd " + tmp.path() + " && " + std::string(MAPTR_BIN_DIR) +
-                              "/maptr top --once 2>&1; echo exit=$?");
-  EXPECT_NE(r.find("no running fleet found"), std::string::npos) << r;
+  // A registry of its own: a fleet the machine's user runs meanwhile is not this test's.
+  const std::string r = shell("cd " + tmp.path() + " && XDG_RUNTIME_DIR=" + tmp.path() + " " +
+                              std::string(MAPTR_BIN_DIR) + "/maptr top --once 2>&1; echo exit=$?");
+  EXPECT_NE(r.find("no running fleet (none registered, none under runs/"), std::string::npos) << r;
   EXPECT_NE(r.find("exit=2"), std::string::npos) << r;
+}
+
+// A fleet whose --out is outside runs/ registers itself: `maptr ps` lists it, `top` and `kill`
+// find it without --run, and its entry is gone when it ends.
+TEST(Top, AFleetOutsideRunsIsFoundByPsTopAndKill) {
+  TempDir tmp;
+  const std::string xdg = tmp.path() + "/xdg", out = tmp.path() + "/elsewhere/run";
+  std::filesystem::create_directories(xdg);
+  setenv("XDG_RUNTIME_DIR", xdg.c_str(), 1);
+  const pid_t launcher = start_cli(run_args(out, {"--duration", "300", "--realtime"}), tmp.path() + "/out.log");
+  unsetenv("XDG_RUNTIME_DIR");
+  const std::string env = "cd " + tmp.path() + " && XDG_RUNTIME_DIR=" + xdg + " " + MAPTR_BIN_DIR + "/maptr ";
+  std::string ps;
+  const bool listed = wait_for(
+      [&] {
+        ps = shell(env + "ps 2>&1");
+        return ps.find(out) != std::string::npos && ps.find("paper") != std::string::npos;
+      },
+      120);
+  std::string screen, sent;
+  if (listed) {
+    wait_for([&] { return !read_json(out + "/fleet.json").is_null(); }, 60);
+    screen = shell(env + "top --once --timeout 60 2>&1; echo exit=$?");
+    sent = shell(env + "kill L3 2>&1; echo exit=$?");
+  }
+  // The launcher records the command's kill before it ends.
+  const bool killed = listed && wait_for([&] { return top_once(out).find("L3 died") != std::string::npos; }, 120);
+  kill(launcher, SIGINT);
+  EXPECT_GE(wait_child(launcher, 120), 0);
+  ASSERT_TRUE(listed) << ps;
+  EXPECT_NE(screen.find("exit=0"), std::string::npos) << screen;
+  EXPECT_NE(screen.find("L0"), std::string::npos) << screen;
+  EXPECT_NE(sent.find("sent 'kill L3' to the fleet in " + out), std::string::npos) << sent;
+  EXPECT_TRUE(killed);
+  // Ended: unregistered.
+  EXPECT_NE(shell(env + "ps 2>&1").find("no running fleet"), std::string::npos);
+  int entries = 0;
+  for (const auto& e : std::filesystem::directory_iterator(xdg + "/maptr/fleets")) entries += e.path().extension() == ".json";
+  EXPECT_EQ(entries, 0);
 }
 
 TEST(Top, FullScreenUnderTmuxShowsAgentsTheDeadOneAndTheFinalStatus) {
