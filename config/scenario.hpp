@@ -143,6 +143,7 @@ struct Scenario {
   bool realtime = false;               ///< pace ticks to the wall clock
   int trace_every = 1;                 ///< write every n-th tick to trace.csv
   std::string record = "all";          ///< run.mcap: "all" topics, "plant" (ticks, gates, events), "none"
+  std::string record_compression = "zstd";  ///< run.mcap's chunks: "none", "lz4" or "zstd"
   /// "auto" (on in ec, off in all), "true" or "false": an agent takes only the ticks it answers
   /// (comm/tick_filter.hpp). In `all` every agent answers every tick, so a filter there only
   /// costs the plant its evaluation and every tick its filter signatures (BENCHMARKS.md).

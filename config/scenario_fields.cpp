@@ -67,6 +67,10 @@ Table<S> run_fields() {
           "record", [](auto& s) -> auto& { return s.record; }, {"all", "plant", "none"},
           "run.mcap: all (every topic), plant (ticks, fault gates, membership, control, ready) or none"),
       text<S>(
+          "record_compression", [](auto& s) -> auto& { return s.record_compression; }, {"none", "lz4", "zstd"},
+          "run.mcap's chunk compression: zstd (smallest), lz4 (cheapest) or none; Foxglove and MCAP's readers "
+          "read all three"),
+      text<S>(
           "tick_filter", [](auto& s) -> auto& { return s.tick_filter; }, {"auto", "true", "false"},
           "true: an agent takes only the ticks it answers or needs (the plant's writer filters them); "
           "false: every tick; auto: true in ec, false in all (every agent answers every tick there)"),

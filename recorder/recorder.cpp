@@ -102,9 +102,11 @@ class Recorder::Tap : public dds::DataReaderListener {
   int deaf_id_ = -1;
 };
 
-Recorder::Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents)
+Recorder::Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents,
+                   const std::string& compression)
     : topics_(recorded_topics(scope)) {
-  file_ = std::make_unique<records::mcap::Writer>(path, "", kLibrary);
+  file_ = std::make_unique<records::mcap::Writer>(path, "", kLibrary, records::mcap::Writer::kDefaultChunkBytes,
+                                                  compression);
   std::map<std::string, uint16_t> schema_of;
   for (const auto& t : topics_) {
     if (!schema_of.count(t.type_name))

@@ -47,7 +47,9 @@ class Recorder {
  public:
   /// Joins the domain of `o` (a participant of its own) and opens `path`. Throws
   /// records::RecordError when the file cannot be written, std::runtime_error on DDS errors.
-  Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents);
+  /// `compression`: run.mcap's chunk compression as MCAP names it ("", "zstd" or "lz4").
+  Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents,
+           const std::string& compression = "zstd");
   ~Recorder();
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;

@@ -7,6 +7,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "records/compression.hpp"
+
 namespace maptr::records::mcap {
 
 using namespace op;
@@ -78,8 +80,9 @@ uint32_t crc32(const std::string& bytes, uint32_t crc) {
 }
 
 Writer::Writer(const std::string& path, const std::string& profile, const std::string& library,
-               std::size_t chunk_bytes)
-    : path_(path), chunk_bytes_(chunk_bytes) {
+               std::size_t chunk_bytes, const std::string& compression)
+    : path_(path), chunk_bytes_(chunk_bytes), compression_(compression) {
+  compress(compression_, "");  // an unknown compression fails here, before the file is made
   f_ = std::fopen(path.c_str(), "wb");
   if (!f_) throw RecordError("cannot write " + path);
   put(kMagic);
@@ -143,10 +146,11 @@ void Writer::flush_chunk() {
   u64(c, chunk_end_ns_);
   u64(c, chunk_.size());
   u32(c, crc32(chunk_));
-  str(c, "");  // no compression
-  u64(c, chunk_.size());
-  ChunkIndex ci{chunk_start_ns_, chunk_end_ns_, offset_, 0, 0, chunk_.size(), {}};
-  put(record(kChunk, c + chunk_));
+  str(c, compression_);
+  const std::string records = compress(compression_, chunk_);
+  u64(c, records.size());
+  ChunkIndex ci{chunk_start_ns_, chunk_end_ns_, offset_, 0, 0, chunk_.size(), records.size(), {}};
+  put(record(kChunk, c + records));
   ci.length = offset_ - ci.offset;
   const uint64_t index_start = offset_;
   for (const auto& [channel, entries] : chunk_index_) {
@@ -186,8 +190,8 @@ std::string Writer::summary_group(uint8_t opcode) const {
       }
       str(c, offsets);
       u64(c, ci.index_length);
-      str(c, "");
-      u64(c, ci.size);  // compressed size: no compression
+      str(c, compression_);
+      u64(c, ci.compressed_size);
       u64(c, ci.size);
       g += record(kChunkIndex, c);
     }

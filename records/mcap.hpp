@@ -4,7 +4,8 @@
 //   magic, Header, Schema and Channel records, Chunks (each followed by one MessageIndex per
 //   channel it holds), DataEnd, summary section (Schemas, Channels, ChunkIndexes, Statistics),
 //   summary-offset section (one SummaryOffset per group), Footer, magic.
-// Chunks are not compressed (compression ""); every chunk carries the CRC-32 of its records,
+// Chunks are compressed as the writer is told ("" none, "zstd" or "lz4": records/compression);
+// every chunk carries the CRC-32 of its uncompressed records,
 // DataEnd the CRC-32 of the file up to it and the Footer that of the summary sections. Times are
 // nanoseconds since the Unix epoch. The reader is the writer's counterpart for tests and tools:
 // it checks every CRC and the indexes against the chunks it reads.
@@ -67,8 +68,9 @@ class Writer {
  public:
   static constexpr std::size_t kDefaultChunkBytes = 1u << 20;
 
+  /// `compression`: the chunks' MCAP compression ("", "zstd" or "lz4").
   Writer(const std::string& path, const std::string& profile, const std::string& library,
-         std::size_t chunk_bytes = kDefaultChunkBytes);
+         std::size_t chunk_bytes = kDefaultChunkBytes, const std::string& compression = "");
   ~Writer();
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
@@ -84,7 +86,7 @@ class Writer {
 
  private:
   struct ChunkIndex {
-    uint64_t start_ns, end_ns, offset, length, index_length, size;
+    uint64_t start_ns, end_ns, offset, length, index_length, size, compressed_size;
     std::map<uint16_t, uint64_t> index_offsets;
   };
   void put(const std::string& bytes);
@@ -94,6 +96,7 @@ class Writer {
   std::FILE* f_ = nullptr;
   std::string path_;
   std::size_t chunk_bytes_;
+  std::string compression_;
   uint64_t offset_ = 0;
   uint32_t data_crc_ = 0;
   std::vector<Schema> schemas_;
@@ -115,7 +118,8 @@ struct File {
   Statistics statistics;
 };
 
-/// Reads a file written by Writer (or any uncompressed, indexed MCAP file). Throws RecordError
+/// Reads a file written by Writer (or any indexed MCAP file whose chunks are uncompressed or
+/// compressed with zstd or lz4). Throws RecordError
 /// naming the file and what is wrong: bad magic, a CRC that does not match, a chunk index or
 /// message index that does not point at its records, statistics that disagree with the messages.
 File read_file(const std::string& path);

@@ -4,6 +4,7 @@
 #include <iterator>
 
 #include "records/mcap.hpp"
+#include "records/compression.hpp"
 
 namespace maptr::records::mcap {
 
@@ -151,9 +152,13 @@ void read_chunk(const std::string& buf, const ChunkIndexEntry& e, const std::str
   if (op != kChunk) at.fail("chunk index points at a record that is not a chunk");
   const uint64_t start = c.u64(), end = c.u64(), size = c.u64();
   const uint32_t crc = c.u32();
-  if (!c.str().empty()) c.fail("compressed chunk (this reader reads uncompressed chunks only)");
-  const std::string records = c.bytes(c.u64());
-  if (records.size() != size) c.fail("chunk size differs from its records");
+  const std::string compression = c.str();
+  std::string records;
+  try {
+    records = decompress(compression, c.bytes(c.u64()), size);
+  } catch (const RecordError& err) {
+    c.fail(err.what());
+  }
   if (crc != 0 && crc32(records) != crc) c.fail("chunk CRC does not match its records");
   if (start != e.start_ns || end != e.end_ns) c.fail("chunk times differ from its index");
   std::map<uint64_t, Message> by_offset;

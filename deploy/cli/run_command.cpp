@@ -160,6 +160,8 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm on one host; data on shm+udp across hosts or with --secure)")
       ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
   run->add_option("--record", a.record, "what run.mcap records: all (default), plant or none");
+  run->add_option("--record-compression", a.record_compression,
+                  "run.mcap's chunk compression: zstd (default), lz4 or none");
   run->add_option("--tick-filter", a.tick_filter,
                   "auto (default): on in ec, off in all; true: an idle agent takes only the ticks it answers; "
                   "false: every agent every tick");
@@ -197,6 +199,7 @@ Scenario scenario_from(const RunArgs& a) {
       {"--tick-hz", "tick_hz", &RunArgs::tick_hz},
       {"--trace-every", "trace_every", &RunArgs::trace_every}, {"--record", "record", &RunArgs::record},
       {"--tick-filter", "tick_filter", &RunArgs::tick_filter},
+      {"--record-compression", "record_compression", &RunArgs::record_compression},
       {"--plant-priority", "plant_priority", &RunArgs::plant_priority},
       {"--driver", "robot.driver", &RunArgs::driver}};
   Scenario s = config::load_scenario(a.scenario.empty() ? default_scenario() : a.scenario);

@@ -14,7 +14,7 @@ namespace maptr::deploy::cli {
 struct RunArgs {
   std::string scenario;
   std::string agents, gross_kg, motor, mode, duration, speed, trace_every, tick_hz, record, tick_filter,
-      plant_priority, driver;
+      plant_priority, driver, record_compression;
   std::string out;
   bool realtime = false, quiet = false, secure = false;
   int domain = -1;

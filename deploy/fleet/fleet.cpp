@@ -15,6 +15,7 @@
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/secure_domain.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
+#include "records/compression.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -162,7 +163,8 @@ void Fleet::start_recorder() {
   o.participant_id = id <= comm::rtps_max_participant_id(o_.domain) ? id : -1;
   o.shm_port_queue = static_cast<uint32_t>(cfg_.recorder_port_queue(sc_.robot.agents));
   recorder_id_ = o.participant_id;
-  recorder_ = std::make_unique<recorder::Recorder>(o, o_.run_dir + "/run.mcap", scope, sc_.robot.agents);
+  recorder_ = std::make_unique<recorder::Recorder>(o, o_.run_dir + "/run.mcap", scope, sc_.robot.agents,
+                                                   records::mcap_compression(sc_.record_compression));
 }
 
 void Fleet::await_recorder() {

@@ -76,7 +76,7 @@ constexpr const char* kScenarioHead =
     "value and the rule (exit 2). `trajectory.segments[]` and `faults[]` are lists: each entry is a\n"
     "mapping of the fields shown under them. `maptr run` options that set fields: `--agents`,\n"
     "`--gross-kg`, `--motor`, `--driver`, `--mode`, `--duration`, `--tick-hz`, `--trace-every`,\n"
-    "`--record`, `--tick-filter`, `--plant-priority`, `--speed` (every moving segment), and\n"
+    "`--record`, `--record-compression`, `--tick-filter`, `--plant-priority`, `--speed` (every moving segment), and\n"
     "`--kill`/`--restart`/`--pause`/`--resume`/`--fault`/`--clear`/`--kill-host`/`--partition`/`--heal`\n"
     "(entries of `faults`). Example scenarios: `deploy/scenarios/`. What a run writes:\n"
     "[SUMMARY.md](SUMMARY.md).\n\n"

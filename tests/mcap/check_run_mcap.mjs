@@ -1,8 +1,10 @@
-// Checks a run's run.mcap with MCAP's own TypeScript reader (@mcap/core) and Foxglove's OMG IDL
+// Checks a run's run.mcap with MCAP's own TypeScript reader (@mcap/core, with the zstd and lz4
+// decompressors of @mcap/support, as Foxglove loads them) and Foxglove's OMG IDL
 // deserialiser (@foxglove/omgidl-serialization with @foxglove/omgidl-parser), as Foxglove reads
 // it, against the run's summary.json and trace.csv:
 //   - the stream reader reads every record with every CRC checked; the indexed reader reads the
-//     summary, the chunk indexes and every message;
+//     summary, the chunk indexes and every message; every chunk is compressed as the run's
+//     scenario.yaml says (record_compression);
 //   - every channel's message count equals the statistics', and holds what the fleet published:
 //     one PlantTick per tick (and a copy per repair), every answer the lock-step needs, one
 //     GroupStatus per group per tick, one CentralCommand per tick;
@@ -10,6 +12,7 @@
 // Usage: node check_run_mcap.mjs RUN_DIR        Exit 0 when every check passes.
 import fs from "node:fs";
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
+import { loadDecompressHandlers } from "@mcap/support";
 import { parseIDL } from "@foxglove/omgidl-parser";
 import { MessageReader } from "@foxglove/omgidl-serialization";
 
@@ -36,7 +39,8 @@ function countAgents(s) {
 }
 
 // 1. The stream reader, every CRC checked.
-const stream = new McapStreamReader({ validateCrcs: true });
+const decompressHandlers = await loadDecompressHandlers();
+const stream = new McapStreamReader({ validateCrcs: true, decompressHandlers });
 stream.append(bytes);
 const kinds = {};
 for (let r; (r = stream.nextRecord()); ) kinds[r.type] = (kinds[r.type] ?? 0) + 1;
@@ -47,7 +51,14 @@ const readable = {
   size: async () => BigInt(bytes.length),
   read: async (offset, size) => bytes.subarray(Number(offset), Number(offset + size)),
 };
-const reader = await McapIndexedReader.Initialize({ readable });
+const reader = await McapIndexedReader.Initialize({ readable, decompressHandlers });
+const wanted = (fs.readFileSync(`${run}/scenario.yaml`, "utf8").match(/^record_compression:\s*(\w+)/m) ?? [])[1] ?? "zstd";
+const compressions = new Set(reader.chunkIndexes.map((c) => c.compression));
+check(
+  `every chunk compressed as record_compression says (${wanted})`,
+  reader.chunkIndexes.length > 0 && compressions.size === 1 && compressions.has(wanted === "none" ? "" : wanted),
+  [...compressions].join(","),
+);
 const decoders = new Map();
 for (const [id, s] of reader.schemasById) {
   check(`schema ${s.name} is omgidl`, s.encoding === "omgidl");
@@ -62,7 +73,7 @@ for await (const m of reader.readMessages()) {
 const stats = reader.statistics;
 console.log(
   `run.mcap: ${bytes.length} bytes, ${reader.channelsById.size} channels, ${stats.messageCount} messages, ` +
-    `${reader.chunkIndexes.length} chunks`,
+    `${reader.chunkIndexes.length} chunks (${[...compressions].join(",") || "uncompressed"})`,
 );
 for (const ch of reader.channelsById.values()) {
   const n = byTopic[ch.topic].length;
