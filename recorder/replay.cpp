@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
+#include <optional>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -9,6 +11,7 @@
 #include <vector>
 
 #include "comm/raw_type.hpp"
+#include "idl/maptrPubSubTypes.h"
 
 namespace maptr::recorder {
 
@@ -36,6 +39,23 @@ std::map<uint16_t, dds::DataWriter*> make_writers(comm::Participant& p, const re
     out[id] = p.writer(topic, profile);
   }
   return out;
+}
+
+/// The simulated time of a PlantTick message (nullopt for other messages or a tick that does not decode).
+std::optional<double> tick_time(const records::mcap::File& f, const records::mcap::Message& m) {
+  const auto ch = f.channels.find(m.channel_id);
+  if (ch == f.channels.end() || ch->second.topic != comm::topic::kTick) return std::nullopt;
+  msg::PlantTickPubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(m.data.size()));
+  std::memcpy(payload.data, m.data.data(), m.data.size());
+  payload.length = static_cast<uint32_t>(m.data.size());
+  msg::PlantTick tick;
+  try {
+    if (!type.deserialize(&payload, &tick)) return std::nullopt;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  return tick.t();
 }
 
 void wait_for_reader(dds::DataWriter* w, double seconds, const std::atomic<bool>& stop) {
@@ -66,11 +86,18 @@ ReplayResult replay(const records::mcap::File& file, const comm::DdsOptions& o, 
   const auto t0 = Clock::now();
   auto last_progress = t0;
   comm::RawSample s;
+  std::optional<double> first_tick_t;
+  double last_tick_t = 0.0;
   for (const auto* m : order) {
     if (stop.load()) break;
-    const double at_s = static_cast<double>(m->log_time_ns - first) * 1e-9 / r.rate;
-    std::this_thread::sleep_until(
-        t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(at_s)));
+    // A tick waits for its simulated time; everything else follows the tick before it.
+    if (const auto t = tick_time(file, *m)) {
+      if (!first_tick_t) first_tick_t = *t;
+      last_tick_t = *t;
+      const double at_s = (*t - *first_tick_t) / r.rate;
+      std::this_thread::sleep_until(
+          t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(at_s)));
+    }
     const auto w = writers.find(m->channel_id);
     if (w == writers.end()) continue;
     s.bytes = m->data;
@@ -82,6 +109,7 @@ ReplayResult replay(const records::mcap::File& file, const comm::DdsOptions& o, 
   }
   res.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
   res.recorded_s = static_cast<double>(order.back()->log_time_ns - first) * 1e-9;
+  res.simulated_s = first_tick_t ? last_tick_t - *first_tick_t : 0.0;
   for (const auto& [id, w] : writers) w->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(r.linger_s));
   return res;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Replay of a recording: every message of a run.mcap published again on a DDS domain, on its
-// recorded topic with its recorded type name and the fleet's QoS profile for that topic, at
-// the pace of its log times divided by `rate`. The bytes sent are the recorded CDR samples, so
+// recorded topic with its recorded type name and the fleet's QoS profile for that topic, in the
+// order recorded, paced by simulated time: each PlantTick goes out when the replay's wall clock
+// reaches its time t divided by `rate` (the messages between two ticks follow the first at once). The bytes sent are the recorded CDR samples, so
 // any reader of the fleet's types (maptr top, a test, a DDS tool) sees the run as if it were live.
 #include <atomic>
 #include <cstdint>
@@ -14,7 +15,7 @@
 namespace maptr::recorder {
 
 struct ReplayOptions {
-  double rate = 1.0;           ///< X times the recorded pace (> 0)
+  double rate = 1.0;           ///< simulated seconds per wall second (> 0)
   double wait_reader_s = 5.0;  ///< before the first message, wait this long for a reader of the ticks
   double linger_s = 2.0;       ///< after the last, wait this long for readers to acknowledge
 };
@@ -24,6 +25,7 @@ struct ReplayResult {
   uint64_t messages = 0;
   double wall_s = 0;      ///< from the first message to the last
   double recorded_s = 0;  ///< log time of the last message minus the first's
+  double simulated_s = 0;  ///< simulated time of the last tick minus the first's
 };
 
 /// Publishes `file` on the domain of `o`; `progress` (if set) is called about once a second

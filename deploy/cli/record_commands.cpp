@@ -30,7 +30,8 @@ CLI::App* add_replay_command(CLI::App& app, ReplayArgs& a) {
   auto* c =
       app.add_subcommand("replay", "publish a recorded run (RUN/run.mcap) again on a DDS domain, as if live");
   c->add_option("run", a.run, "run folder or .mcap file")->required();
-  c->add_option("--rate", a.rate, "X times the recorded pace (default 1)")->check(CLI::PositiveNumber);
+  c->add_option("--rate", a.rate, "simulated seconds per second (default 1: the run's own simulated pace)")
+      ->check(CLI::PositiveNumber);
   c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
       ->check(CLI::Range(0, kMaxDomain));
   c->add_option("--wait-reader", a.wait_reader_s, "wait up to this many seconds for a reader of the ticks")
@@ -63,7 +64,7 @@ int cmd_replay(const ReplayArgs& a) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   if (!a.quiet)
-    std::fprintf(stderr, "maptr: replaying %s (%zu messages on %zu topics) on domain %d at %gx\n",
+    std::fprintf(stderr, "maptr: replaying %s (%zu messages on %zu topics) on domain %d, %g simulated s per s\n",
                  path.c_str(), file.messages.size(), file.channels.size(), o.domain, a.rate);
   const auto progress = [&](uint64_t n) {
     if (!a.quiet)
@@ -74,8 +75,8 @@ int cmd_replay(const ReplayArgs& a) {
   r.rate = a.rate;
   r.wait_reader_s = a.wait_reader_s;
   const auto res = recorder::replay(file, o, r, replay_stop(), progress);
-  std::printf("replayed    %llu messages, %.1f s recorded in %.1f s\n",
-              static_cast<unsigned long long>(res.messages), res.recorded_s, res.wall_s);
+  std::printf("replayed    %llu messages, %.1f simulated s in %.1f s (the run took %.1f s)\n",
+              static_cast<unsigned long long>(res.messages), res.simulated_s, res.wall_s, res.recorded_s);
   return res.messages == file.messages.size() ? kExitOk : kExitFailed;
 }
 

@@ -108,7 +108,7 @@ CLI::App* add_top_command(CLI::App& app, TopArgs& a) {
   c->add_option("--timeout", a.timeout_s, "--once: seconds to wait for the fleet's first tick")
       ->check(CLI::PositiveNumber);
   c->add_option("--width", a.width, "--once: line width")->check(CLI::Range(top::kMinWidth, 1000));
-  c->add_option("--rate", a.rate, "a finished run: replay it at X times its recorded pace (default 1)")
+  c->add_option("--rate", a.rate, "a finished run: replay it at X simulated seconds per second (default 1)")
       ->check(CLI::PositiveNumber);
   c->add_option("--domain", a.domain, "a finished run: the replay's DDS domain (default: a free one)")
       ->check(CLI::Range(0, kMaxDomain));

@@ -1,6 +1,7 @@
 #include "deploy/top/fleet_view.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 
@@ -100,6 +101,19 @@ void FleetView::add_event(const std::string& text, double t_s) {
   while (events_.size() > kEventsKept) events_.pop_front();
 }
 
+void FleetView::set_recorded_events(std::vector<ViewEvent> events) {
+  recorded_ = true;
+  std::stable_sort(events.begin(), events.end(), [](const ViewEvent& a, const ViewEvent& b) { return a.t_s < b.t_s; });
+  recorded_events_.assign(events.begin(), events.end());
+}
+
+void FleetView::release_recorded(double t) {
+  while (!recorded_events_.empty() && !(recorded_events_.front().t_s > t + 1e-9)) {
+    add_event(recorded_events_.front().text, recorded_events_.front().t_s);
+    recorded_events_.pop_front();
+  }
+}
+
 void FleetView::fold_side(int s, const msg::SideTick& st) {
   SideView& v = sides_[s];
   v.battery_V = st.battery_V();
@@ -126,6 +140,8 @@ void FleetView::on_tick(const msg::PlantTick& t, double arrival_s) {
   arrivals_.push_back({tick_, t_s_, arrival_s});
   while (arrivals_.size() > kRateWindowTicks) arrivals_.pop_front();
   if (phase_ == Phase::kWaiting) phase_ = Phase::kRunning;
+  const bool last = t.run_state() == msg::RUN_FINISHED || t.run_state() == msg::RUN_ABORTED;
+  release_recorded(last ? std::numeric_limits<double>::infinity() : t_s_);
   if (t.run_state() == msg::RUN_FINISHED && phase_ != Phase::kFinished) {
     phase_ = Phase::kFinished;
     add_event("run finished", t_s_);
@@ -167,8 +183,9 @@ void FleetView::on_group(const msg::GroupStatus& g) {
     if (f == v.agents[i].faulty) continue;
     v.agents[i].faulty = f;
     const std::string name = (s == 0 ? "L" : "R") + std::to_string(i);
-    add_event(f ? name + " isolated by its group (" + kDiagnosis[f] + ")" : name + " let back by its group",
-              ticked() ? t_s_ : std::nan(""));
+    if (!recorded_)
+      add_event(f ? name + " isolated by its group (" + kDiagnosis[f] + ")" : name + " let back by its group",
+                ticked() ? t_s_ : std::nan(""));
   }
 }
 
@@ -176,7 +193,12 @@ void FleetView::on_central(const msg::CentralCommand& c) { v_x_ref_ = c.v_x_ref(
 
 void FleetView::on_membership(const msg::MembershipEvent& e, bool before_join) {
   const bool died = e.kind() == msg::MEMBER_DIED;
-  add_event(e.name() + (died ? " died" : " started"), before_join || !ticked() ? std::nan("") : t_s_);
+  static const char* const kKind[] = {" died", " started", " paused", " resumed"};
+  const auto k = static_cast<std::size_t>(e.kind());
+  if (!recorded_)
+    add_event(e.name() + (k < 4 ? kKind[k] : " changed"), before_join || !ticked() ? std::nan("") : t_s_);
+  // A pause or a resume leaves the process alive: only a death or a start changes the cell.
+  if (e.kind() == msg::MEMBER_PAUSED || e.kind() == msg::MEMBER_RESUMED) return;
   if (e.node_kind() == msg::NODE_GROUP && (e.side() == msg::SIDE_L || e.side() == msg::SIDE_R))
     sides_[static_cast<int>(e.side())].group_died = died;
   if (e.node_kind() != msg::NODE_AGENT) return;
@@ -187,9 +209,11 @@ void FleetView::on_membership(const msg::MembershipEvent& e, bool before_join) {
 }
 
 void FleetView::on_gate(const msg::FaultGate& g) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "scheduled fault (tick %llu)", static_cast<unsigned long long>(g.tick()));
-  add_event(buf, g.t());
+  if (recorded_) return;
+  const auto it = gate_faults_.find(static_cast<long long>(g.tick()));
+  add_event("scheduled " + (it == gate_faults_.end() ? std::string("fault") : it->second) + " (tick " +
+                std::to_string(g.tick()) + ")",
+            g.t());
 }
 
 void FleetView::on_ready(const msg::NodeReady& r) {
@@ -198,6 +222,7 @@ void FleetView::on_ready(const msg::NodeReady& r) {
 }
 
 void FleetView::on_summary(const std::string& status, const std::string& end_reason) {
+  release_recorded(std::numeric_limits<double>::infinity());
   final_status_ = status;
   end_reason_ = end_reason;
   if (phase_ == Phase::kRunning || phase_ == Phase::kWaiting) phase_ = Phase::kGone;

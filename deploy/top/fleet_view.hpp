@@ -10,6 +10,7 @@
 //   speed error       = 100 (v_x - v_x_ref) / |v_x_ref|  (%), v_x_ref: central's last command
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,8 @@ namespace maptr::top {
 
 /// Ticks the real-time factor and the tick statistics are computed over.
 inline constexpr std::size_t kRateWindowTicks = 500;
-/// Membership and fault events the view keeps.
-inline constexpr std::size_t kEventsKept = 8;
+/// Membership and fault events the view keeps (all of a run's; a bound against a flood).
+inline constexpr std::size_t kEventsKept = 100000;
 /// A live agent whose last reply is older than this (wall s) while the view watches is paused.
 inline constexpr double kPausedAfter_s = 1.0;
 /// A group whose last status is this many ticks behind the plant's tick is shown silent.
@@ -101,6 +102,13 @@ class FleetView {
   /// before_join: written before the watcher joined (its time is not known).
   void on_membership(const msg::MembershipEvent& e, bool before_join = false);
   void on_gate(const msg::FaultGate& g);
+  /// What the scenario schedules at each fault gate's tick ("kill of L3, restart of L1"), so
+  /// that a gate's event names its faults.
+  void set_gate_faults(std::map<long long, std::string> by_tick) { gate_faults_ = std::move(by_tick); }
+  /// A replay: the run's own record of its events (summary.json), in simulated-time order. They
+  /// enter the log as the replayed ticks reach their time (all of them at the run's end); the
+  /// membership events and gates that come over DDS then change the cells only.
+  void set_recorded_events(std::vector<ViewEvent> events);
   void on_ready(const msg::NodeReady& r);
   /// The run's summary.json: its status and end reason (the fleet has ended).
   void on_summary(const std::string& status, const std::string& end_reason);
@@ -144,6 +152,8 @@ class FleetView {
     double t_s, arrival_s;
   };
   void add_event(const std::string& text, double t_s);
+  /// The recorded events up to simulated time t (all of them with t = +inf).
+  void release_recorded(double t);
   AgentCell* cell(int side, int index);
   void fold_side(int s, const msg::SideTick& st);
 
@@ -155,6 +165,9 @@ class FleetView {
   SideView sides_[2];
   std::deque<Arrival> arrivals_;
   std::deque<ViewEvent> events_;
+  std::map<long long, std::string> gate_faults_;
+  bool recorded_ = false;               ///< events come from set_recorded_events()
+  std::deque<ViewEvent> recorded_events_;  ///< not yet reached
   std::vector<std::string> ready_;
   std::string final_status_, end_reason_;
 };

@@ -154,10 +154,12 @@ std::vector<std::string> layout(const FleetView& v, int width, int height) {
   const bool small = height > 0 && static_cast<int>(cells.size()) > room;
   if (small) cells = compact(v, width);
   out.insert(out.end(), cells.begin(), cells.end());
-  const int event_room =
-      height > 0 ? std::max(0, height - static_cast<int>(out.size()) - kBottomLines) : kEventsShown;
+  // On a screen the latest events that fit (at most kEventsShown below a tall grid); in a
+  // snapshot (height 0) every event.
   const auto& ev = v.events();
-  const int shown = std::min({event_room, kEventsShown, static_cast<int>(ev.size())});
+  const int event_room = height > 0 ? std::min(kEventsShown, std::max(0, height - static_cast<int>(out.size()) - kBottomLines))
+                                    : static_cast<int>(ev.size());
+  const int shown = std::min(event_room, static_cast<int>(ev.size()));
   out.push_back(ev.empty() ? "events: none" : "events:");
   for (int i = static_cast<int>(ev.size()) - shown; i < static_cast<int>(ev.size()); ++i) {
     const ViewEvent& e = ev[static_cast<std::size_t>(i)];

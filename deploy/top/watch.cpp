@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "deploy/top/run_events.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::top {
@@ -50,13 +51,24 @@ std::optional<FleetCoordinates> replay_coordinates(const std::string& run_dir, c
   return c;
 }
 
-Watch::Watch(FleetCoordinates c) : c_(std::move(c)), view_(c_.info) {}
+Watch::Watch(FleetCoordinates c) : c_(std::move(c)), view_(c_.info) {
+  // A gate's event names the faults the scenario schedules at its tick.
+  try {
+    view_.set_gate_faults(gate_faults(config::load_scenario(c_.info.run_dir + "/scenario.yaml")));
+  } catch (const std::exception&) {
+    // no scenario.yaml (a run folder of an older build): gates show as "scheduled fault"
+  }
+}
 
 Watch::Watch(FleetCoordinates c, const ReplayRequest& r)
     : c_(std::move(c)),
       view_(c_.info),
       reader_(std::make_unique<FleetReader>(c_)),
-      replay_(std::make_unique<ReplayProcess>(r.maptr, c_.info.run_dir, r.domain, r.rate)) {}
+      replay_(std::make_unique<ReplayProcess>(r.maptr, c_.info.run_dir, r.domain, r.rate)) {
+  // A replay shows the run's own record of its events, as the replayed ticks reach them.
+  const records::Summary s = records::Summary::read(c_.info.run_dir + "/summary.json");
+  view_.set_recorded_events(recorded_events(s.data(), s.number_or("tick_hz", 100.0)));
+}
 
 void Watch::end_run() {
   const records::Summary s = records::Summary::read(c_.info.run_dir + "/summary.json");

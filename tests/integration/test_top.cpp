@@ -14,6 +14,7 @@
 #include <iostream>
 #include <iterator>
 #include <regex>
+#include <sstream>
 
 #include "tests/integration/fleet_runner.hpp"
 
@@ -213,6 +214,65 @@ TEST(Top, OnceOnAFinishedRunReplaysItsRecordingAndShowsTheRecordedEnd) {
     EXPECT_NEAR(r.battery_V, s.at("plant").at("battery_V").value(side, NAN), 0.005 + 1e-9) << side;
     EXPECT_NEAR(r.discharge_mAh, s.at("battery_discharge_mAh").value(side, NAN), 0.0005 + 1e-9) << side;
     EXPECT_EQ(r.active, s.at("active_agents").value(side, -1)) << side;
+  }
+}
+
+/// The event lines of a `top --once` screen ("t    12.00 s    L3 died (scheduled)"), in order.
+std::vector<std::string> event_lines(const std::string& screen) {
+  std::vector<std::string> out;
+  std::istringstream in(screen);
+  bool in_events = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("events:", 0) == 0) {
+      in_events = true;
+      continue;
+    }
+    if (in_events && line.rfind("  t ", 0) == 0)
+      out.push_back(line);
+    else if (in_events)
+      break;
+  }
+  return out;
+}
+
+// A replay shows the run's own events: every membership event of summary.json, at its time, in
+// order, between the faults named with their ticks; two replays give the same list.
+TEST(Top, AReplayListsEveryEventOfTheRunInOrderTheSameEveryTime) {
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  const CliResult run =
+      run_cli(run_args(out, {"--duration", "16", "--kill", "L3@4", "--kill", "L4@5", "--kill", "group-L@7", "--restart",
+                             "group-L@9", "--pause", "central@11", "--resume", "central@12"}),
+              out, 300);
+  ASSERT_TRUE(run.exit_code == 0 || run.exit_code == 3) << run.output;  // ok or degraded
+  std::vector<std::string> expected;
+  for (const auto& e : run.summary.at("membership_events")) {
+    char buf[160];
+    std::snprintf(buf, sizeof(buf), "  t %8.2f s    %s %s (%s)", e.value("t_s", 0.0), e.value("process", "").c_str(),
+                  e.value("kind", "").c_str(), e.value("cause", "").c_str());
+    expected.push_back(buf);
+  }
+  ASSERT_GE(expected.size(), 6u) << run.summary.at("membership_events").dump(1);
+  std::vector<std::string> first;
+  for (int k = 0; k < 2; ++k) {
+    const CliResult top = run_cli({"top", "--once", "--run", out, "--rate", "8"}, tmp.path() + "/top", 300);
+    ASSERT_EQ(top.exit_code, 0) << top.output;
+    const auto lines = event_lines(top.output);
+    // The membership events, in the order and at the times the run recorded them.
+    std::vector<std::string> members;
+    for (const auto& l : lines)
+      if (l.find("scheduled ") == std::string::npos && l.find("by its group") == std::string::npos &&
+          l.find("run finished") == std::string::npos && l.find("run aborted") == std::string::npos)
+        members.push_back(l);
+    EXPECT_EQ(members, expected) << top.output;
+    // Each fault named with its tick (100 Hz: at_s x 100).
+    EXPECT_NE(top.output.find("scheduled kill of L3 (tick 400)"), std::string::npos) << top.output;
+    EXPECT_NE(top.output.find("scheduled pause of central (tick 1100)"), std::string::npos) << top.output;
+    EXPECT_EQ(top.output.find("central started"), std::string::npos) << "a pause is not a start\n" << top.output;
+    if (k == 0)
+      first = lines;
+    else
+      EXPECT_EQ(lines, first) << "two replays, two event lists";
   }
 }
 
