@@ -27,6 +27,12 @@ constexpr double kTimeLeft = 0.055, kTimeRight = 0.46, kKeyX = 0.465, kTop = 0.9
 constexpr const char* kPathOrigin = "0.56,0.30";
 constexpr const char* kPathSize = "0.44,0.66";
 constexpr double kNoteX = 0.60, kNoteTop = 0.26, kNoteStep = 0.025;
+/// The wear panel, under the notes in the right column.
+constexpr const char* kWearOrigin = "0.56,0.02";
+constexpr const char* kWearSize = "0.42,0.17";
+/// The events panel: characters of its 9-point font across the time panels, and its rows.
+constexpr double kEventChars = 120;
+constexpr int kEventRows = 7;
 
 std::string fmt(double v) {
   std::ostringstream o;
@@ -34,31 +40,41 @@ std::string fmt(double v) {
   return o.str();
 }
 
-/// A vertical line at each event; on the first panel also its name.
-std::string event_lines(const std::vector<RunEvent>& events, bool labels) {
+/// A vertical line at each event.
+std::string event_lines(const std::vector<RunEvent>& events) {
   std::string s = "unset arrow\nunset label\n";
-  for (std::size_t i = 0; i < events.size(); ++i) {
-    const auto& e = events[i];
+  for (const auto& e : events) {
     const char* colour = e.fault ? kFaultColour : kMemberColour;
     s += "set arrow from " + fmt(e.t_s) + ", graph 0 to " + fmt(e.t_s) + ", graph 1 nohead lc rgb '" +
          colour + "' dt " + (e.fault ? "1" : "2") + "\n";
-    if (labels)
-      s += "set label '" + e.label + "' at " + fmt(e.t_s) + ", graph " + fmt(0.97 - 0.12 * (i % 4)) +
-           " rotate by 0 offset 0.3,0 font ',9' tc rgb '" + colour + "'\n";
   }
   return s;
 }
 
-/// Each placed event as a point on the path, named beside it.
+/// The events panel: each event numbered and named at its time, in rows that do not overlap.
+std::string events_panel(const std::vector<RunEvent>& events, double t0, double t1) {
+  const std::vector<int> rows = label_rows(events, t0, t1, kEventChars, kEventRows);
+  const int n_rows = rows.empty() ? 1 : *std::max_element(rows.begin(), rows.end()) + 1;
+  std::string s = "set ylabel 'events'\nset yrange [0:" + fmt(n_rows) + "]\nunset ytics\nset grid noytics\n";
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const char* colour = events[i].fault ? kFaultColour : kMemberColour;
+    s += "set label '" + std::to_string(i + 1) + " " + events[i].label + "' at " + fmt(events[i].t_s) + "," +
+         fmt(n_rows - rows[i] - 0.5) + " left offset 0.2,0 font ',9' tc rgb '" + colour + "' front\n";
+  }
+  return s + "plot NaN notitle\nset ytics\nset grid ytics\nset autoscale y\n";
+}
+
+/// Each placed event as a point on the path, numbered beside it.
 std::string event_points(const std::vector<RunEvent>& events) {
   std::string s = "unset arrow\nunset label\n";
   for (std::size_t i = 0; i < events.size(); ++i) {
     const auto& e = events[i];
     if (!e.placed) continue;
     const char* colour = e.fault ? kFaultColour : kMemberColour;
-    s += "set label '" + e.label + "' at " + fmt(e.x_m) + "," + fmt(e.y_m) + " point pt 7 ps 1.3 lc rgb '" +
-         colour + "' offset 0.8," + fmt(1.5 - 1.0 * static_cast<double>(i % 4)) + " font ',9' tc rgb '" +
-         colour + "' front\n";
+    // Numbered as in the events panel: names would cover one another where the robot stood.
+    s += "set label '" + std::to_string(i + 1) + "' at " + fmt(e.x_m) + "," + fmt(e.y_m) +
+         " point pt 7 ps 1.3 lc rgb '" + colour + "' offset 0.5," + fmt(0.8 - 0.8 * static_cast<double>(i % 3)) +
+         " font ',9' tc rgb '" + colour + "' front\n";
   }
   return s;
 }
@@ -102,8 +118,8 @@ std::string cross_track_panel() {
 
 std::string agents_panel(int per_side) {
   return "set ylabel 'agents'\nset yrange [0:" + fmt(per_side * kAgentHeadroom) + "]\n" +
-         "plot 'trace.csv' using \"t_s\":\"n_active_L\" with steps lw 2 title 'active L', \\\n"
-         "     '' using \"t_s\":\"n_active_R\" with steps lw 2 title 'active R', \\\n"
+         "plot 'trace.csv' using \"t_s\":\"n_active_L\" with steps lw 5 lc rgb '#c39bd3' title 'active L', \\\n"
+         "     '' using \"t_s\":\"n_active_R\" with steps lw 1.5 lc rgb '#117a65' title 'active R', \\\n"
          "     '' using \"t_s\":\"n_live_L\" with steps lw 2 dt 2 lc rgb 'black' title 'live L', \\\n"
          "     '' using \"t_s\":\"n_live_R\" with steps lw 2 dt 3 lc rgb 'gray40' title 'live R'\n"
          "set autoscale y\n";
@@ -116,8 +132,8 @@ std::string energy_panel() {
 
 std::string battery_panel() {
   return "set ylabel 'battery, V'\n"
-         "plot 'trace.csv' using \"t_s\":\"battery_V_L\" with lines lw 2 title 'battery L', \\\n"
-         "     '' using \"t_s\":\"battery_V_R\" with lines lw 2 title 'battery R'\n";
+         "plot 'trace.csv' using \"t_s\":\"battery_V_L\" with lines lw 5 lc rgb '#c39bd3' title 'battery L', \\\n"
+         "     '' using \"t_s\":\"battery_V_R\" with lines lw 1.5 lc rgb '#117a65' title 'battery R'\n";
 }
 
 /// The robot's path against the reference's in the plane, equal scales, events on it.
@@ -135,6 +151,26 @@ std::string path_panel(const std::vector<RunEvent>& events) {
          "     '' every ::0::0 using \"x_m\":\"y_m\" with points pt 9 ps 2 lc rgb 'black' title 'start'\n";
 }
 
+/// Each agent's wear at the end, a bar per agent, L then R.
+std::string wear_panel(const std::vector<double>& L, const std::vector<double>& R) {
+  // The script reads comma-separated data (gnuplot.cpp): so does this block (index, name, m, side).
+  // At most about 16 names on the axis: every agent up to 16, every 2nd up to 32, ...
+  const std::size_t step = std::max<std::size_t>(1, (L.size() + R.size() + 15) / 16);
+  std::string s = "$wear << EOD\n";
+  for (std::size_t i = 0; i < L.size() + R.size(); ++i) {
+    const bool left = i < L.size();
+    const std::size_t k = left ? i : i - L.size();
+    s += std::to_string(i) + "," + (k % step == 0 ? (left ? "L" : "R") + std::to_string(k) : std::string()) + "," +
+         fmt(left ? L[k] : R[k]) + "," + (left ? "0" : "1") + "\n";
+  }
+  return s + "EOD\nset lmargin -1\nset rmargin -1\nset tmargin -1\nset bmargin -1\nunset label\nunset arrow\n"
+             "set origin " + kWearOrigin + "\nset size " + kWearSize +
+             "\nset size noratio\nset title 'wear per agent at the end (m driven, the groups'' ledgers)' font ',10'\n"
+             "set xlabel ''\nset ylabel 'm'\nset xrange [-0.7:" + fmt(static_cast<double>(L.size() + R.size()) - 0.3) +
+             "]\nset yrange [0:*]\nset style fill solid 0.7\nset boxwidth 0.8\nunset key\nset xtics norotate font ',8'\n"
+             "plot $wear using 1:3:($4 == 0 ? 0xc39bd3 : 0x117a65):xtic(2) with boxes lc rgb variable notitle\n";
+}
+
 /// Lines of text in the right column under the path (or in its place).
 std::string notes(const std::vector<std::string>& lines) {
   std::string s;
@@ -144,6 +180,29 @@ std::string notes(const std::vector<std::string>& lines) {
   return s;
 }
 }  // namespace
+
+std::vector<int> label_rows(const std::vector<RunEvent>& events, double t0, double t1, double chars_across,
+                            int max_rows) {
+  const double per_char = t1 > t0 && chars_across > 0 ? (t1 - t0) / chars_across : 0.0;
+  std::vector<double> row_end;  // where each row's last label ends, s
+  std::vector<int> out;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const double start = events[i].t_s;
+    const double width = per_char * static_cast<double>(events[i].label.size() + std::to_string(i + 1).size() + 3);
+    int row = -1;
+    for (std::size_t r = 0; r < row_end.size() && row < 0; ++r)
+      if (row_end[r] <= start) row = static_cast<int>(r);
+    if (row < 0 && static_cast<int>(row_end.size()) < max_rows) {
+      row = static_cast<int>(row_end.size());
+      row_end.push_back(start);
+    }
+    if (row < 0)  // every row taken here: the one whose last label ends first
+      row = static_cast<int>(std::min_element(row_end.begin(), row_end.end()) - row_end.begin());
+    row_end[static_cast<std::size_t>(row)] = start + width;
+    out.push_back(row);
+  }
+  return out;
+}
 
 std::vector<RunEvent> run_events(const nlohmann::json& summary) {
   std::vector<RunEvent> out;
@@ -233,7 +292,10 @@ std::vector<std::string> path_notes(const nlohmann::json& summary, bool has_path
 
 std::string run_plot_body(const RunPlotSpec& spec, const std::vector<RunEvent>& events) {
   const std::string r = fmt(spec.wheel_radius_m);
-  std::vector<std::string> panels = {speed_panel(r)};
+  const bool with_events = spec.t1 > spec.t0 && !events.empty();
+  std::vector<std::string> panels;
+  if (with_events) panels.push_back(events_panel(events, spec.t0, spec.t1));
+  panels.push_back(speed_panel(r));
   if (spec.has_path) {
     panels.push_back(yaw_panel(r, fmt(spec.track_m)));
     panels.push_back(heading_panel());
@@ -242,14 +304,16 @@ std::string run_plot_body(const RunPlotSpec& spec, const std::vector<RunEvent>& 
   for (const auto& p : {agents_panel(spec.per_side), energy_panel(), battery_panel()}) panels.push_back(p);
   std::string b = "set multiplot title '" + spec.title + "' font ',13'\nset grid\n";
   b += "set lmargin at screen " + fmt(kTimeLeft) + "\nset rmargin at screen " + fmt(kTimeRight) +
-       "\nset format x ''\nset autoscale xfix\n";
+       "\nset format x ''\n" +
+       (spec.t1 > spec.t0 ? "set xrange [" + fmt(spec.t0) + ":" + fmt(spec.t1) + "]\n" : "set autoscale xfix\n");
   const int n = static_cast<int>(panels.size());
   for (int i = 0; i < n; ++i) {
-    b += time_frame(i, n) + event_lines(events, i == 0);
+    b += time_frame(i, n) + event_lines(events);
     if (i == n - 1) b += "set format x '%g'\nset xlabel 'simulated time, s'\n" + notes(spec.notes);
     b += panels[i];
   }
   if (spec.has_path) b += path_panel(events);
+  if (!spec.wear_L.empty() || !spec.wear_R.empty()) b += wear_panel(spec.wear_L, spec.wear_R);
   return b + "unset multiplot\n";
 }
 
@@ -274,6 +338,14 @@ bool draw_run_plot(const std::string& run_dir) {
   spec.per_side = sc.robot.per_side();
   spec.has_path = path.has_path;
   spec.notes = path_notes(s.data(), path.has_path);
+  if (!path.t_s.empty()) {
+    spec.t0 = path.t_s.front();
+    spec.t1 = path.t_s.back();
+  }
+  const auto wear = s.data().value("plant", nlohmann::json::object()).value("group_wear", nlohmann::json::object());
+  for (const auto& [side, out] : {std::pair<const char*, std::vector<double>*>{"L", &spec.wear_L}, {"R", &spec.wear_R}})
+    for (const auto& w : wear.value(side, nlohmann::json::object()).value("wear_m", nlohmann::json::array()))
+      if (w.is_number()) out->push_back(w.get<double>());
   return draw_plot(run_dir, kStem, "run.png of " + run_dir + " (maptr plot RUN redraws it)",
                    PlotFrame{kFrameSize, ",10"}, run_plot_body(spec, events));
 }

@@ -36,20 +36,24 @@ TEST(RunPlot, FaultsAndMembershipEventsInTimeOrderWithoutSkippedFaults) {
   EXPECT_EQ(e[3].label, "L3 rejoined");
 }
 
-TEST(RunPlot, EveryEventIsALineAcrossThePanelsAndNamedOnTheFirst) {
+TEST(RunPlot, EveryEventIsALineAcrossThePanelsAndNamedInTheEventsPanel) {
   RunPlotSpec spec;
   spec.title = "t";
   spec.has_path = false;
+  spec.t0 = 0;
+  spec.t1 = 10;
   const std::string body = run_plot_body(spec, run_events(kSummary));
   auto count = [&](const std::string& what) {
     std::size_t n = 0;
     for (auto p = body.find(what); p != std::string::npos; p = body.find(what, p + 1)) ++n;
     return n;
   };
-  // Set with its label before the first panel, then again without it before each of the others.
-  EXPECT_EQ(count("set arrow from 5.02,"), 4u);
-  EXPECT_EQ(count("unset arrow"), 4u);
-  EXPECT_EQ(count("set label 'L3 died'"), 1u);
+  // A line before each panel (the events panel and the four time panels), numbered and named
+  // once, in the events panel.
+  EXPECT_EQ(count("set arrow from 5.02,"), 5u);
+  EXPECT_EQ(count("unset arrow"), 5u);
+  EXPECT_EQ(count("L3 died'"), 1u);
+  EXPECT_EQ(count("set label '2 L3 died' at 5.02,"), 1u);
   EXPECT_EQ(count("plot 'trace.csv'"), 4u);  // a trace without the path: the four time panels
   // The reference speed: the mean wheel reference times the wheel radius.
   EXPECT_NE(body.find("(column(\"ref_L_radps\")+column(\"ref_R_radps\"))/2*0.035"), std::string::npos);
@@ -98,6 +102,40 @@ TEST(RunPlot, WithThePathSevenTimePanelsAndThePathAtEqualScales) {
   EXPECT_NE(body.find("\"ref_x_m\":\"ref_y_m\""), std::string::npos);
   // The reference yaw rate: r (phidot_ref_R - phidot_ref_L) / a.
   EXPECT_NE(body.find("((column(\"ref_R_radps\")-column(\"ref_L_radps\"))*0.035/0.2)"), std::string::npos);
-  EXPECT_NE(body.find("set label 'L3 died' at 0,0 point"), std::string::npos);
+  EXPECT_NE(body.find("set label '2' at 0,0 point"), std::string::npos);  // numbered as in the events panel
   EXPECT_NE(body.find("cross-track max 0.123 m at 30.0 s"), std::string::npos);
+}
+
+TEST(RunPlot, EventLabelsTakeRowsWithoutCoveringOneAnother) {
+  using maptr::deploy::report::label_rows;
+  using maptr::deploy::report::RunEvent;
+  // 100 characters across 100 s: one character a second; "N label" takes size + digits + 3.
+  const std::vector<RunEvent> ev = {{10, "kill L3", true},  {12, "L3 died", false}, {30, "kill L4", true},
+                                    {31, "L4 died", false}, {60, "pause central", true}};
+  const auto rows = label_rows(ev, 0, 100, 100, 7);
+  EXPECT_EQ(rows, (std::vector<int>{0, 1, 0, 1, 0}));
+  // With one row only, the later labels go to the row that ends first (they overlap: nothing else is left).
+  EXPECT_EQ(label_rows(ev, 0, 100, 100, 1), (std::vector<int>{0, 0, 0, 0, 0}));
+  // Labels far apart share the top row.
+  EXPECT_EQ(label_rows({{0, "a", true}, {50, "b", true}}, 0, 100, 100, 7), (std::vector<int>{0, 0}));
+}
+
+TEST(RunPlot, TheBodyHasAnEventsPanelAndAWearPanelWhenItHasTheirData) {
+  using namespace maptr::deploy::report;
+  RunPlotSpec spec;
+  spec.title = "t";
+  spec.t0 = 0;
+  spec.t1 = 20;
+  spec.wear_L = {1.5, 2.5};
+  spec.wear_R = {3.0, 0.0};
+  const std::string b = run_plot_body(spec, {{5, "kill L3", true}});
+  EXPECT_NE(b.find("set ylabel 'events'"), std::string::npos);
+  EXPECT_NE(b.find("set label '1 kill L3' at 5,"), std::string::npos) << b;
+  EXPECT_NE(b.find("set xrange [0:20]"), std::string::npos);
+  EXPECT_NE(b.find("$wear << EOD\n0,L0,1.5,0\n1,L1,2.5,0\n2,R0,3,1\n3,R1,0,1\nEOD"), std::string::npos) << b;
+  spec.wear_L.clear();
+  spec.wear_R.clear();
+  const std::string none = run_plot_body(spec, {});
+  EXPECT_EQ(none.find("events'"), std::string::npos);
+  EXPECT_EQ(none.find("$wear"), std::string::npos);
 }
