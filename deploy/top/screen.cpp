@@ -3,6 +3,7 @@
 #include <curses.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <atomic>
 #include <string>
 
@@ -51,10 +52,10 @@ void mark_dead(int row, const std::string& line) {
       mvchgat(row, static_cast<int>(at), 1, A_BOLD, kDeadColour, nullptr);
 }
 
-void draw(const FleetView& v) {
+void draw(const FleetView& v, int events_back) {
   int rows = 0, cols = 0;
   getmaxyx(stdscr, rows, cols);
-  const auto lines = layout(v, cols, rows);
+  const auto lines = layout(v, cols, rows, events_back);
   erase();
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (i == 0) attron(A_REVERSE);
@@ -73,11 +74,19 @@ int run_screen(Watch& w) {
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
   Curses session;
+  int events_back = 0;  // the event list scrolled back this many events (0: the latest)
   while (!g_interrupted.load()) {
     w.poll();
-    draw(w.view());
+    const int n = static_cast<int>(w.view().events().size());
+    events_back = std::clamp(events_back, 0, std::max(0, n - 1));
+    draw(w.view(), events_back);
     const int key = getch();  // waits at most one refresh period; KEY_RESIZE redraws at once
     if (key == 'q' || key == 'Q') break;
+    if (key == KEY_UP) ++events_back;
+    if (key == KEY_DOWN) --events_back;
+    if (key == KEY_PPAGE) events_back += kEventsShown;
+    if (key == KEY_NPAGE) events_back -= kEventsShown;
+    if (key == KEY_END) events_back = 0;
   }
   return 0;
 }

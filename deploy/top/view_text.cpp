@@ -144,7 +144,7 @@ std::string status_line(const FleetView& v, bool compact_layout) {
 
 std::string legend() { return "A active . idle H hold C coast S stop X dead P paused R rejoining F faulty"; }
 
-std::vector<std::string> layout(const FleetView& v, int width, int height) {
+std::vector<std::string> layout(const FleetView& v, int width, int height, int events_back) {
   if (width < kMinWidth || (height > 0 && height < kMinHeight))
     return {fmt("maptr top: the terminal is %dx%d; it needs at least %dx%d", width, height, kMinWidth,
                 kMinHeight)};
@@ -160,8 +160,13 @@ std::vector<std::string> layout(const FleetView& v, int width, int height) {
   const int event_room = height > 0 ? std::min(kEventsShown, std::max(0, height - static_cast<int>(out.size()) - kBottomLines))
                                     : static_cast<int>(ev.size());
   const int shown = std::min(event_room, static_cast<int>(ev.size()));
-  out.push_back(ev.empty() ? "events: none" : "events:");
-  for (int i = static_cast<int>(ev.size()) - shown; i < static_cast<int>(ev.size()); ++i) {
+  // Scrolled back by events_back (at most to the first event): the window ends that far before the latest.
+  const int last = static_cast<int>(ev.size()) - std::clamp(events_back, 0, static_cast<int>(ev.size()) - shown);
+  out.push_back(ev.empty() ? "events: none"
+                : shown < static_cast<int>(ev.size())
+                    ? fmt("events %d-%d of %d (up/down scroll):", last - shown + 1, last, static_cast<int>(ev.size()))
+                    : std::string("events:"));
+  for (int i = last - shown; i < last; ++i) {
     const ViewEvent& e = ev[static_cast<std::size_t>(i)];
     out.push_back((std::isnan(e.t_s) ? std::string("  before joining ") : fmt("  t %8.2f s    ", e.t_s)) +
                   e.text);

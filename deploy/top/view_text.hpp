@@ -14,12 +14,13 @@ namespace maptr::top {
 inline constexpr int kCellWidth = 38;
 /// Smallest terminal the view lays out in; below it one line says so.
 inline constexpr int kMinWidth = 40, kMinHeight = 12;
-/// Events the screen shows.
+/// Events the screen shows at most (as many as fit below the agents).
 inline constexpr int kEventsShown = 4;
 
 /// The screen as lines (each at most `width` characters). height <= 0: no height limit (every
-/// agent gets a cell).
-std::vector<std::string> layout(const FleetView& v, int width, int height);
+/// agent gets a cell, every event a line). On a screen, the events shown end `events_back`
+/// events before the latest (the list scrolled back; 0 the latest).
+std::vector<std::string> layout(const FleetView& v, int width, int height, int events_back = 0);
 
 /// The one-letter legend of the compact layout.
 std::string legend();

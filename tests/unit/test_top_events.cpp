@@ -5,6 +5,7 @@
 
 #include "deploy/top/fleet_view.hpp"
 #include "deploy/top/run_events.hpp"
+#include "deploy/top/view_text.hpp"
 
 namespace {
 
@@ -80,4 +81,33 @@ TEST(TopEvents, APauseIsNotAStart) {
   EXPECT_EQ(v.events()[0].text, "central paused");
 }
 
+}  // namespace
+
+namespace {
+TEST(TopEvents, TheScreenKeepsEveryEventAndScrollsBack) {
+  top::FleetView v(top::RunInfo{"s", "/tmp/x", 8, 10, 0, 1});
+  std::vector<top::ViewEvent> ev;
+  for (int i = 0; i < 20; ++i) ev.push_back({static_cast<double>(i), "event " + std::to_string(i)});
+  v.set_recorded_events(ev);
+  v.on_summary("ok", "finished");  // a finished run: every recorded event is in the list
+  ASSERT_EQ(v.events().size(), 20u);
+  const auto joined = [](const std::vector<std::string>& lines) {
+    std::string s;
+    for (const auto& l : lines) s += l + "\n";
+    return s;
+  };
+  // A snapshot (no height) shows all 20.
+  const std::string all = joined(top::layout(v, 100, 0));
+  EXPECT_NE(all.find("event 0\n"), std::string::npos) << all;
+  EXPECT_NE(all.find("event 19\n"), std::string::npos) << all;
+  // A 24-line screen the latest 4, then scrolled back by 10, then past the first (clamped).
+  const std::string latest = joined(top::layout(v, 100, 24));
+  EXPECT_NE(latest.find("events 17-20 of 20"), std::string::npos) << latest;
+  EXPECT_NE(latest.find("event 19\n"), std::string::npos);
+  const std::string back = joined(top::layout(v, 100, 24, 10));
+  EXPECT_NE(back.find("events 7-10 of 20"), std::string::npos) << back;
+  EXPECT_NE(back.find("event 9\n"), std::string::npos);
+  EXPECT_EQ(back.find("event 19\n"), std::string::npos);
+  EXPECT_NE(joined(top::layout(v, 100, 24, 999)).find("events 1-4 of 20"), std::string::npos);
+}
 }  // namespace
