@@ -46,9 +46,11 @@ bool summary_path_matches(const std::string& pattern, const std::string& path) {
   return true;
 }
 
-const std::vector<SummaryField>& summary_fields() {
-  static const std::vector<SummaryField> table = {
-      // The run as a whole (deploy/fleet/summary.cpp).
+namespace {
+
+/// The run as a whole (deploy/fleet/summary.cpp).
+std::vector<SummaryField> run_keys() {
+  return {
       {"status", "text", "",
        "How the run ended: ok, degraded: <why> or aborted: <why>; the launcher's status if it aborted the run, else the plant's"},
       {"scenario", "text", "",
@@ -82,16 +84,24 @@ const std::vector<SummaryField>& summary_fields() {
       {"transport", "text", "", "DDS data transport: shm, udp, or shm+udp (on several hosts or a secure domain)"},
       {"agent_start", "text", "", "How the launcher started the agents: zygote (forked from a zygote process) or exec"},
       {"chaos_seed", "integer", "1", "The seed of --chaos, whose random faults the run had; present only with --chaos"},
-      {"trace_sha256", "text", "", "SHA-256 of trace.csv, in hex; empty when the run has no trace.csv"},
+      {"trace_sha256", "text", "", "SHA-256 of trace.csv, in hex; empty when the run has no trace.csv"}
+  };
+}
 
-      // The robot against its path: plant.path, copied ({} when the plant left no results).
+/// The robot against its path: plant.path, copied ({} when the plant left no results).
+std::vector<SummaryField> path_keys() {
+  return {
       {"path.cross_track_max_m", "number", "m", "Largest |cross-track error| from the reference path after the first second"},
       {"path.cross_track_max_t_s", "number", "s", "Simulated time of the largest cross-track error"},
       {"path.cross_track_rms_m", "number", "m", "RMS cross-track error after the first second"},
       {"path.heading_error_max_rad", "number", "rad", "Largest |heading error| after the first second, while the reference moves"},
-      {"path.final_position_error_m", "number", "m", "Distance from the robot's last pose to the reference's last pose"},
+      {"path.final_position_error_m", "number", "m", "Distance from the robot's last pose to the reference's last pose"}
+  };
+}
 
-      // Every fault, in time order: the launcher's (processes, hosts) and the agents' own (from plant.json).
+/// Every fault, in time order: the launcher's (processes, hosts) and the agents' own (from plant.json).
+std::vector<SummaryField> failure_keys() {
+  return {
       {"failures[].target", "text", "",
        "What the fault acts on: an agent, group-L, group-R, central, plant, discovery (the server) or a host (h0, h1, ...)"},
       {"failures[].action", "text", "",
@@ -128,18 +138,26 @@ const std::vector<SummaryField>& summary_fields() {
       {"failures[].readmitted_s", "number|null", "s",
        "Agents' faults only: when its group let the agent back after its last probation; null: never"},
       {"failures[].energy_penalty_J", "null", "J",
-       "Agents' faults only: always null in a run; `maptr experiment faults` measures it against a fault-free twin"},
+       "Agents' faults only: always null in a run; `maptr experiment faults` measures it against a fault-free twin"}
+  };
+}
 
-      // Every membership change the plant applied (plant.membership_events, with causes).
+/// Every membership change the plant applied (plant.membership_events, with causes).
+std::vector<SummaryField> membership_keys() {
+  return {
       {"membership_events[].kind", "text", "", "died, lease_lost, deadline_missed, paused, resumed, started or rejoined"},
       {"membership_events[].process", "text", "", "The process it concerns: an agent, group-L, group-R or central"},
       {"membership_events[].t_s", "number", "s", "Simulated time at which the plant applied the change"},
       {"membership_events[].wall_ms", "number", "ms", "The plant's wall clock when it applied the change, ms since the epoch"},
       {"membership_events[].cause", "text", "",
        "scheduled, chaos, command, external signal, launcher, lease, deadline or unknown; a rejoined has the cause of the change it ends"},
-      {"membership_events[].after", "text", "", "Rejoined only: the kind of the process's change that it ends"},
+      {"membership_events[].after", "text", "", "Rejoined only: the kind of the process's change that it ends"}
+  };
+}
 
-      // What each process dropped.
+/// What each process dropped.
+std::vector<SummaryField> rejection_keys() {
+  return {
       {"rejected_samples.<process>", "integer", "1",
        "Samples this process dropped (malformed, forged, undecodable, wrong sender): plant, launcher, each follower's last report"},
       {"rejected_ready.forged", "integer", "1",
@@ -149,9 +167,13 @@ const std::vector<SummaryField>& summary_fields() {
       {"rejected_by_kind.plant.<kind>", "integer", "1",
        "The plant's drops by kind (forged, malformed, other_tick, conflicting, stale, undecodable) and its late answers (late)"},
       {"rejected_by_kind.launcher.<kind>", "integer", "1",
-       "The launcher's drops by kind (forged, stale, malformed, undecodable); they add up to rejected_samples.launcher"},
+       "The launcher's drops by kind (forged, stale, malformed, undecodable); they add up to rejected_samples.launcher"}
+  };
+}
 
-      // Level 2 per side, from level2-L.csv and level2-R.csv (a side without a log is absent).
+/// Level 2 per side, from level2-L.csv and level2-R.csv (a side without a log is absent).
+std::vector<SummaryField> level2_keys() {
+  return {
       {"level2.<side>.decisions", "integer", "1", "Level-2 decisions of the side's group (rows of its level2-<side>.csv; 0 in mode all)"},
       {"level2.<side>.infeasible", "integer", "1", "Decisions where no count of agents could hold the reference: every live agent ran"},
       {"level2.<side>.oracle_checked", "integer", "1", "Solved decisions that the exhaustive-search oracle also checked"},
@@ -159,9 +181,13 @@ const std::vector<SummaryField>& summary_fields() {
       {"level2.<side>.solve_ms_median", "number", "ms", "Median Ipopt solve time over the side's decisions; absent with no decision"},
       {"level2.<side>.solve_ms_p95", "number", "ms", "95th percentile of the Ipopt solve time (nearest rank); absent with no decision"},
       {"level2.<side>.solve_ms_max", "number", "ms", "Longest Ipopt solve time; absent with no decision"},
-      {"level2.<side>.error", "text", "", "Why the side's log could not be read (its figures are then zero); present only then"},
+      {"level2.<side>.error", "text", "", "Why the side's log could not be read (its figures are then zero); present only then"}
+  };
+}
 
-      // Every process of the fleet, the plant first.
+/// Every process of the fleet, the plant first.
+std::vector<SummaryField> process_keys() {
+  return {
       {"processes[].name", "text", "", "The process: plant, central, group-L, group-R or an agent (L0, R3, ...)"},
       {"processes[].pid", "integer", "1", "Process id of its last start; an external process: the pid it reported, once checked (else -1)"},
       {"processes[].exit_code", "integer", "1", "Exit status of its last end; -1 when it did not exit (a signal ended it, or it was not reaped)"},
@@ -169,32 +195,48 @@ const std::vector<SummaryField>& summary_fields() {
       {"processes[].max_rss_kB", "integer", "kB", "Peak resident memory over its starts, as wait4 reports it; 0 for an external process"},
       {"processes[].starts", "integer", "1", "Times the launcher started it (1 + restarts); 0 for an external process"},
       {"processes[].external", "bool", "", "True when the user started it (--external), not the launcher"},
-      {"processes[].host", "text", "", "On several hosts only: the host it ran on last (h0, h1, ...)"},
+      {"processes[].host", "text", "", "On several hosts only: the host it ran on last (h0, h1, ...)"}
+  };
+}
 
-      // On several hosts only.
+/// On several hosts only.
+std::vector<SummaryField> host_keys() {
+  return {
       {"hosts[].name", "text", "", "On several hosts only: the host's name (h0, h1, ...)"},
       {"hosts[].address", "text", "", "The host's IPv4 address"},
       {"hosts[].kind", "text", "", "namespace (a Linux network namespace the launcher made) or machine (a real one)"},
       {"hosts[].processes[]", "text", "", "A process placed on the host at the end of the run"},
       {"hosts[].discovery_server", "text", "", "The host's discovery server, address:port"},
       {"hosts[].bytes_sent", "integer|null", "B", "Bytes the host sent on its link during the run; null for a real machine"},
-      {"hosts[].bytes_received", "integer|null", "B", "Bytes the host received on its link during the run; null for a real machine"},
+      {"hosts[].bytes_received", "integer|null", "B", "Bytes the host received on its link during the run; null for a real machine"}
+  };
+}
 
-      // run.mcap against what the plant used.
+/// run.mcap against what the plant used.
+std::vector<SummaryField> recording_keys() {
+  return {
       {"recording", "object|null", "", "run.mcap against the answers the plant used (the keys below); null when the run recorded nothing"},
       {"recording.recorded.<topic>", "integer", "1", "Messages run.mcap holds of this topic (maptr/tick, maptr/agent_reply, ...: those of its record scope)"},
       {"recording.incomplete.<topic>.recorded", "integer", "1",
        "An answer topic of which run.mcap holds fewer messages than the plant used: the messages it holds"},
-      {"recording.incomplete.<topic>.taken_by_plant", "integer", "1", "The same topic: the answers the plant used (plant.answers_taken)"},
+      {"recording.incomplete.<topic>.taken_by_plant", "integer", "1", "The same topic: the answers the plant used (plant.answers_taken)"}
+  };
+}
 
-      // A second attempt after a discovery timeout.
+/// A second attempt after a discovery timeout.
+std::vector<SummaryField> retry_keys() {
+  return {
       {"discovery_retry.first_status", "text", "",
        "Only when the first attempt timed out in discovery and the fleet ran once more: the first attempt's status"},
       {"discovery_retry.first_domain", "integer", "1", "DDS domain of the first attempt"},
       {"discovery_retry.domain", "integer", "1", "DDS domain of the second attempt, whose results these are"},
-      {"discovery_retry.first_attempt", "text", "", "Folder of the run holding the first attempt's logs, summary.json and fleet.json: first-attempt/"},
+      {"discovery_retry.first_attempt", "text", "", "Folder of the run holding the first attempt's logs, summary.json and fleet.json: first-attempt/"}
+  };
+}
 
-      // The plant's results (RUN_DIR/plant.json); {} when the plant left none.
+/// The plant's results (RUN_DIR/plant.json); {} when the plant left none.
+std::vector<SummaryField> plant_keys_run() {
+  return {
       {"plant.status", "text", "", "The plant's view of the run: ok, degraded: <why> or aborted: stop signal"},
       {"plant.end_reason", "text", "", "duration reached, or why the run ended early (the speed stayed too far below its reference too long)"},
       {"plant.sim_time_s", "number", "s", "Simulated time at the end: ticks / tick_hz"},
@@ -232,7 +274,13 @@ const std::vector<SummaryField>& summary_fields() {
        "Answers from their rightful sender that came after the plant had gone past the next tick: not used, not rejected"},
       {"plant.missed_deadlines", "integer", "1", "With realtime: ticks done after their wall-clock due time (0 without realtime)"},
       {"plant.loop_scheduling", "text", "",
-       "What the lock-step thread ran under: normal, SCHED_FIFO <priority> on CPU <n>, or normal (SCHED_FIFO ... refused: <why>)"},
+       "What the lock-step thread ran under: normal, SCHED_FIFO <priority> on CPU <n>, or normal (SCHED_FIFO ... refused: <why>)"}
+  };
+}
+
+/// The plant's results, continued.
+std::vector<SummaryField> plant_keys_faults() {
+  return {
       {"plant.tick_repairs", "integer", "1", "Ticks sent again because answers were missing (samples taken for lost)"},
       {"plant.answers_taken.<topic>", "integer", "1",
        "Answers the plant used, by topic (maptr/agent_reply, maptr/group, maptr/central): at most one per member and tick"},
@@ -270,8 +318,19 @@ const std::vector<SummaryField>& summary_fields() {
       {"plant.agent_faults.diagnoses[].event", "text", "", "isolated (flag raised) or readmitted (flag lowered)"},
       {"plant.agent_faults.diagnoses[].diagnosed", "text", "", "What the group took it for; empty for readmitted"},
       {"plant.agent_faults.diagnoses[].false_detection", "bool", "", "True when the agent was flagged with no fault in force on it"},
-      {"plant.agent_faults.false_detections", "integer", "1", "Flags raised on an agent with no fault in force (healthy agents isolated)"},
+      {"plant.agent_faults.false_detections", "integer", "1", "Flags raised on an agent with no fault in force (healthy agents isolated)"}
   };
+}
+
+}  // namespace
+
+const std::vector<SummaryField>& summary_fields() {
+  static const std::vector<SummaryField> table = [] {
+    std::vector<SummaryField> all;
+    for (auto part : {run_keys, path_keys, failure_keys, membership_keys, rejection_keys, level2_keys, process_keys, host_keys, recording_keys, retry_keys, plant_keys_run, plant_keys_faults})
+      for (auto& f : part()) all.push_back(std::move(f));
+    return all;
+  }();
   return table;
 }
 
