@@ -166,10 +166,12 @@ Table<S> control_fields() {
   return {
       real<S>(
           "control.kp", [](auto& s) -> auto& { return s.control.pid.kp; }, closed(0, 1e6), "V s/rad",
-          "wheel PID proportional gain (kp and ki not both zero)"),
+          "wheel PID proportional gain (kp and ki not both zero); the paper's 0.5 and 2 leave a turn's yaw "
+          "lagging (the run can end degraded: path not followed); the warehouse loop turns with kp 4, ki 20 "
+          "(docs/MODEL.md \"Turning\")"),
       real<S>(
           "control.ki", [](auto& s) -> auto& { return s.control.pid.ki; }, closed(0, 1e6), "V/rad",
-          "wheel PID integral gain"),
+          "wheel PID integral gain (with kp: 20 for turns, see kp)"),
       real<S>(
           "control.kd", [](auto& s) -> auto& { return s.control.pid.kd; }, closed(0, 1e6), "V s^2/rad",
           "wheel PID derivative gain"),

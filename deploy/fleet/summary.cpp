@@ -258,7 +258,8 @@ std::string fault_lines(const nlohmann::json& s) {
       what = f.value("exposed_ticks", 0) > 0 ? "NOT DETECTED" : "not detected (it never acted on the drive)";
     }
     if (num("readmitted_s") >= 0.0) what += ", let back at " + model::param_value(num("readmitted_s")) + " s";
-    if (f.value("relapses", 0) > 0) what += ", flagged again " + std::to_string(f.value("relapses", 0)) + " times";
+    if (const int n = f.value("relapses", 0); n > 0)
+      what += ", flagged again " + (n == 1 ? std::string("once") : std::to_string(n) + " times");
     std::snprintf(buf, sizeof(buf), "fault       %s %s at %.2f s: %s; max speed error %.2f %%\n", f.value("target", "").c_str(),
                   mode.c_str(), num("injected_s"), what.c_str(), num("max_speed_error_pct"));
     os << buf;
