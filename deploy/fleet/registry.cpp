@@ -78,6 +78,7 @@ FleetRegistration::FleetRegistration(const std::string& run_dir, const std::stri
   e.domain = domain;
   e.started_unix_s = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   path_ = dir + "/" + std::to_string(e.pid) + ".json";
+  (void)running_fleets();  // drops the entries of launchers killed before they could remove theirs
   // Written whole, then renamed: a reader never sees half an entry.
   const std::string tmp = path_ + ".tmp";
   std::ofstream(tmp) << to_json(e).dump() << "\n";

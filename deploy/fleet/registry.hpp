@@ -37,7 +37,8 @@ std::string registry_dir();
 /// it does not run.
 long long process_start_ticks(int pid);
 
-/// Registers this launcher's fleet for its lifetime (the file is removed by the destructor).
+/// Registers this launcher's fleet for its lifetime (the file is removed by the destructor);
+/// on the way, drops the entries of launchers that are gone.
 class FleetRegistration {
  public:
   FleetRegistration(const std::string& run_dir, const std::string& scenario, int domain);
