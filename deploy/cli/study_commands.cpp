@@ -91,8 +91,9 @@ int cmd_compare(CompareArgs a, const std::string& bin_dir) {
   a.c.o.bin_dir = bin_dir;
   a.c.o.source_dir = source_dir();
   a.c.o.domain = resolve_domain(a.domain);
+  std::vector<CompareVariant> variants;
   try {
-    const auto variants = compare_variants(a.c);  // bad input: exit 2 before anything starts
+    variants = compare_variants(a.c);  // bad input: exit 2 before anything starts
     if (a.c.o.out.empty()) a.c.o.out = unique_run_dir("runs", "compare-" + variants.front().s.name);
   } catch (const config::ScenarioError& e) {
     std::cerr << "maptr: " << e.what() << "\n";
@@ -105,7 +106,7 @@ int cmd_compare(CompareArgs a, const std::string& bin_dir) {
   for (const auto& s : a.c.sets) cmd += " --set " + s;
   if (!a.c.duration.empty()) cmd += " --duration " + a.c.duration;
   a.c.o.command = cmd + " --out " + a.c.o.out;
-  return run_compare(a.c);
+  return run_compare(a.c, variants);
 }
 
 int cmd_experiment(ExperimentArgs a, const std::string& bin_dir) {

@@ -59,6 +59,9 @@ std::vector<report::Column> columns() {
           {"trace_sha256", "trace sha256", -1}};
 }
 
+/// A row's number, NaN when the run did not give it (null).
+double figure(const json& row, const char* key) { return row[key].is_number() ? row[key].get<double>() : kNaN; }
+
 double side_sum(const json& j, const char* key) {
   if (!j.contains(key) || !j[key].is_object()) return kNaN;
   return j[key].value("L", kNaN) + j[key].value("R", kNaN);
@@ -130,8 +133,7 @@ std::vector<CompareVariant> compare_variants(const CompareOptions& c) {
   return out;
 }
 
-int run_compare(const CompareOptions& c) {
-  const std::vector<CompareVariant> variants = compare_variants(c);  // throws before anything starts
+int run_compare(const CompareOptions& c, const std::vector<CompareVariant>& variants) {
   std::filesystem::create_directories(c.o.out + "/series");
   install_stop_handler();
   ExperimentOptions o = c.o;
@@ -176,11 +178,8 @@ int run_compare(const CompareOptions& c) {
   for (const auto& row : t.rows)
     std::printf("%-28s %-10s energy %10.1f J  saving %6.2f %%  mileage %.4f m/J  mean active %5.2f  cross-track max %.3f m\n",
                 row["variant"].get<std::string>().c_str(), row["status"].get<std::string>().substr(0, 10).c_str(),
-                row["energy_J"].is_number() ? row["energy_J"].get<double>() : kNaN,
-                row["saving_pct"].is_number() ? row["saving_pct"].get<double>() : kNaN,
-                row["mileage_m_per_J"].is_number() ? row["mileage_m_per_J"].get<double>() : kNaN,
-                row["mean_active_agents"].is_number() ? row["mean_active_agents"].get<double>() : kNaN,
-                row["cross_track_max_m"].is_number() ? row["cross_track_max_m"].get<double>() : kNaN);
+                figure(row, "energy_J"), figure(row, "saving_pct"), figure(row, "mileage_m_per_J"),
+                figure(row, "mean_active_agents"), figure(row, "cross_track_max_m"));
   if (!same.empty()) std::printf("%s", same.c_str());
   return e.stopped() ? 1 : rc;
 }

@@ -31,8 +31,8 @@ struct CompareVariant {
 /// config::ScenarioError naming the option, the value and the rule (nothing has started).
 std::vector<CompareVariant> compare_variants(const CompareOptions& c);
 
-/// Runs the variants and writes the files; returns the process exit code (0: every variant
-/// ended ok; 3: one ended degraded; 1: one aborted or the comparison was interrupted).
-int run_compare(const CompareOptions& c);
+/// Runs the variants (compare_variants(c)) and writes the files; returns the process exit code
+/// (0: every variant ended ok; 3: one ended degraded; 1: one aborted or the comparison was interrupted).
+int run_compare(const CompareOptions& c, const std::vector<CompareVariant>& variants);
 
 }  // namespace maptr::deploy

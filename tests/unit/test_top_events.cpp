@@ -41,14 +41,18 @@ TEST(TopEvents, ARunsRecordBecomesItsEventListInTimeOrder) {
                                              "L3 died (scheduled)"}));
 }
 
+msg::PlantTick tick_at(uint64_t k, double t, msg::RunState state) {
+  msg::PlantTick p;
+  p.tick(k);
+  p.t(t);
+  p.run_state(state);
+  return p;
+}
+
 TEST(TopEvents, AReplayedViewReleasesTheRecordAsTheTicksReachIt) {
   top::FleetView v(top::RunInfo{"s", "/tmp/x", 8, 10, 0, 1});
   v.set_recorded_events({{5.0, "L3 died (scheduled)"}, {2.0, "central paused (command)"}});
-  msg::PlantTick t;
-  t.tick(300);
-  t.t(3.0);
-  t.run_state(msg::RUN_RUNNING);
-  v.on_tick(t, 0.0);
+  v.on_tick(tick_at(300, 3.0, msg::RUN_RUNNING), 0.0);
   ASSERT_EQ(v.events().size(), 1u);
   EXPECT_EQ(v.events()[0].text, "central paused (command)");
   // A membership sample over DDS changes the cells but not the list.
@@ -61,10 +65,7 @@ TEST(TopEvents, AReplayedViewReleasesTheRecordAsTheTicksReachIt) {
   v.on_membership(e);
   EXPECT_EQ(v.events().size(), 1u);
   EXPECT_EQ(v.state(0, 3), top::CellState::kDead);
-  t.tick(1000);
-  t.t(10.0);
-  t.run_state(msg::RUN_FINISHED);
-  v.on_tick(t, 1.0);
+  v.on_tick(tick_at(1000, 10.0, msg::RUN_FINISHED), 1.0);
   ASSERT_EQ(v.events().size(), 3u);
   EXPECT_EQ(v.events()[1].text, "L3 died (scheduled)");
   EXPECT_EQ(v.events()[2].text, "run finished");
