@@ -8,6 +8,9 @@
 #include <fastcdr/exceptions/Exception.h>
 #include <fastdds/rtps/common/SerializedPayload.h>
 
+#include <cstring>
+#include <string>
+
 namespace maptr::comm {
 
 /// Whether the last deserialize of a CheckedType on this thread refused its payload.
@@ -29,5 +32,16 @@ class CheckedType : public Generated {
     return ok;
   }
 };
+
+/// Decodes `bytes` (a sample as sent: the CDR encapsulation header and body) as the fastddsgen
+/// type `Generated` into `out`; false when the type refuses it. Never throws.
+template <class Generated, class Message>
+bool decode(const std::string& bytes, Message& out) {
+  thread_local CheckedType<Generated> type;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(bytes.size()));
+  if (!bytes.empty()) std::memcpy(payload.data, bytes.data(), bytes.size());
+  payload.length = static_cast<uint32_t>(bytes.size());
+  return type.deserialize(&payload, &out);
+}
 
 }  // namespace maptr::comm

@@ -1,8 +1,8 @@
 #include "comm/fleet_guid.hpp"
 
-#include "comm/security.hpp"
-
 #include <unistd.h>
+
+#include "comm/security.hpp"
 
 namespace maptr::comm {
 
@@ -57,8 +57,24 @@ bool written_by_id(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& 
   return id && base_id >= 0 && *id % fleet_stride(agents) == base_id;
 }
 
-bool written_by(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer, const std::string& name) {
+bool written_by(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer,
+                const std::string& name) {
   return written_by_id(fleet_id, agents, writer, base_participant_id(name, agents));
+}
+
+std::string writer_process(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer) {
+  const rtps::GUID_t guid = rtps::iHandle2GUID(writer);
+  const auto id = is_secure_prefix(guid.guidPrefix) ? secure_base_id(guid.guidPrefix, agents)
+                                                    : fleet_participant(fleet_id, writer);
+  return id ? participant_name(*id, agents) : "";
+}
+
+std::string prefix_text(const rtps::InstanceHandle_t& writer) {
+  static const char* hex = "0123456789abcdef";
+  const rtps::GUID_t guid = rtps::iHandle2GUID(writer);
+  std::string s;
+  for (const auto b : guid.guidPrefix.value) s += {hex[b >> 4], hex[b & 15]};
+  return s;
 }
 
 }  // namespace maptr::comm

@@ -9,10 +9,10 @@
 // can do"). On a secure domain (`maptr run --secure`) DDS Security replaces the prefix by one
 // derived from the participant's certificate; written_by_id() then names the writer by its
 // certificate (comm/security.hpp).
-#include <fastdds/rtps/common/GuidPrefix_t.hpp>
 #include <fastdds/rtps/common/InstanceHandle.h>
 
 #include <cstdint>
+#include <fastdds/rtps/common/GuidPrefix_t.hpp>
 #include <optional>
 #include <string>
 
@@ -24,15 +24,25 @@ namespace maptr::comm {
 eprosima::fastrtps::rtps::GuidPrefix_t fleet_guid_prefix(uint32_t fleet_id, int id);
 
 /// Participant id behind a writer handle, if that writer belongs to fleet `fleet_id`.
-std::optional<int> fleet_participant(uint32_t fleet_id, const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
+std::optional<int> fleet_participant(uint32_t fleet_id,
+                                     const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
 
-/// True when `writer` belongs to the process `name` of fleet `fleet_id` (any of its starts).
 /// True when `writer` belongs to the process whose first start had participant id `base_id`
 /// (comm/fleet_ids.hpp), in any of its starts. No strings: cheap enough for every sample.
 bool written_by_id(uint32_t fleet_id, int agents, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
                    int base_id);
 
+/// True when `writer` belongs to the process `name` of fleet `fleet_id` (any of its starts).
 bool written_by(uint32_t fleet_id, int agents, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
                 const std::string& name);
+
+/// The process of fleet `fleet_id` (of `agents` agents) that `writer` belongs to ("plant",
+/// "launcher", "L3", ...), by its GUID prefix or, on a secure domain, its certificate; "" for
+/// a writer of no process of the fleet.
+std::string writer_process(uint32_t fleet_id, int agents,
+                           const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
+
+/// A writer's GUID prefix as 24 hexadecimal digits.
+std::string prefix_text(const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
 
 }  // namespace maptr::comm

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "config/scenario.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::comm {
@@ -68,6 +69,22 @@ const FleetTopic* find_fleet_topic(const std::string& name) {
   for (const auto& t : fleet_topics())
     if (t.topic == name) return &t;
   return nullptr;
+}
+
+std::vector<std::string> published_topics(const std::string& name) {
+  int side = 0, index = 0;
+  if (name == "plant") return {topic::kTick, topic::kGate, topic::kReady};
+  if (name == "central") return {topic::kCentral, topic::kReady};
+  if (name == "group-L" || name == "group-R") return {topic::kGroup, topic::kReady};
+  if (name == "launcher") return {topic::kMembership, topic::kControl};
+  if (config::parse_agent_name(name, side, index)) return {topic::kAgentReply, topic::kReady};
+  return {};
+}
+
+bool publishes(const std::string& name, const std::string& topic) {
+  for (const auto& t : published_topics(name))
+    if (t == topic) return true;
+  return false;
 }
 
 }  // namespace maptr::comm

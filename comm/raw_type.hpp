@@ -45,4 +45,12 @@ const std::vector<FleetTopic>& fleet_topics();
 /// The topic named `topic` of the fleet, or nullptr.
 const FleetTopic* find_fleet_topic(const std::string& topic);
 
+/// The topics process `name` publishes ("plant", "central", "group-L", "launcher", "L3", ...;
+/// none for any other name): what a secure domain's permissions grant it and what a recording
+/// takes from its writers.
+std::vector<std::string> published_topics(const std::string& name);
+
+/// Whether process `name` publishes on `topic`.
+bool publishes(const std::string& name, const std::string& topic);
+
 }  // namespace maptr::comm

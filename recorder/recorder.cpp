@@ -1,9 +1,8 @@
 #include "recorder/recorder.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <set>
-
-#include <algorithm>
 #include <stdexcept>
 
 #include "comm/fleet_guid.hpp"
@@ -63,13 +62,14 @@ int32_t recorder_depth(int agents) {
 /// A reader's listener: takes every sample at once and hands it to the recorder.
 class Recorder::Tap : public dds::DataReaderListener {
  public:
-  Tap(Recorder& r, uint16_t channel) : r_(r), channel_(channel) {}
+  Tap(Recorder& r, uint16_t topic) : r_(r), topic_(topic) {}
   void on_data_available(dds::DataReader* reader) override {
     r_.nap_if_woken();
     comm::RawSample s;
     dds::SampleInfo info;
     while (reader->take_next_sample(&s, &info) == ReturnCode_t::RETCODE_OK)
-      if (info.valid_data) r_.push(channel_, info.source_timestamp, std::move(s.bytes));
+      if (info.valid_data)
+        r_.push(topic_, info.publication_handle, info.source_timestamp, std::move(s.bytes));
     r_.taken();
   }
   /// For tests only: the first start's writer of this process is never counted as matched.
@@ -94,7 +94,7 @@ class Recorder::Tap : public dds::DataReaderListener {
 
  private:
   Recorder& r_;
-  uint16_t channel_;
+  uint16_t topic_;
   std::atomic<int> matched_{0};
   mutable std::mutex m_;
   std::set<eprosima::fastrtps::rtps::InstanceHandle_t> writers_;
@@ -104,17 +104,16 @@ class Recorder::Tap : public dds::DataReaderListener {
 
 Recorder::Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents,
                    const std::string& compression)
-    : topics_(recorded_topics(scope)) {
-  file_ = std::make_unique<records::mcap::Writer>(path, "", kLibrary, records::mcap::Writer::kDefaultChunkBytes,
-                                                  compression);
+    : topics_(recorded_topics(scope)), fleet_id_(o.fleet_id), agents_(agents) {
+  file_ = std::make_unique<records::mcap::Writer>(path, "", kLibrary,
+                                                  records::mcap::Writer::kDefaultChunkBytes, compression);
   std::map<std::string, uint16_t> schema_of;
   for (const auto& t : topics_) {
     if (!schema_of.count(t.type_name))
       schema_of[t.type_name] = file_->add_schema(t.type_name, "omgidl", msg::idl_text());
-    file_->add_channel(schema_of[t.type_name], t.topic, "cdr");
+    schema_.push_back(schema_of[t.type_name]);
   }
   counts_.assign(topics_.size(), 0);
-  sequence_.assign(topics_.size(), 0);
   writer_ = std::thread([this] { write_loop(); });
   participant_ = std::make_unique<comm::Participant>("recorder", o);
   for (std::size_t i = 0; i < topics_.size(); ++i) {
@@ -138,7 +137,8 @@ Recorder::~Recorder() {
 }
 
 void Recorder::nap_if_woken() {
-  const auto since = std::chrono::steady_clock::now().time_since_epoch() - std::chrono::nanoseconds(last_take_ns_.load());
+  const auto since =
+      std::chrono::steady_clock::now().time_since_epoch() - std::chrono::nanoseconds(last_take_ns_.load());
   if (since > kIdleGap) std::this_thread::sleep_for(kNap);
 }
 
@@ -148,14 +148,15 @@ void Recorder::taken() {
                           .count());
 }
 
-void Recorder::push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes) {
+void Recorder::push(uint16_t topic, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+                    const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes) {
   {
     std::lock_guard<std::mutex> g(m_);
     if (stopping_) return;  // a participant Fast DDS could not delete (comm::participant_left_open())
     const uint64_t publish_ns = static_cast<uint64_t>(source.seconds()) * 1000000000ull + source.nanosec();
     // The log time is taken under the lock: log times rise in file order.
-    queue_.push_back({channel, now_ns(), publish_ns, std::move(bytes)});
-    ++counts_[channel];
+    queue_.push_back({topic, writer, now_ns(), publish_ns, std::move(bytes)});
+    ++counts_[topic];
     if (queue_.size() < kWakeBatch) return;  // the file thread comes by within kWritePeriod
   }
   cv_.notify_one();
@@ -172,8 +173,8 @@ void Recorder::write_loop() {
     lk.unlock();
     for (auto& p : batch) {
       records::mcap::Message m;
-      m.channel_id = p.channel;
-      m.sequence = ++sequence_[p.channel];
+      m.channel_id = channel_of(p);
+      m.sequence = ++sequence_[m.channel_id];
       m.log_time_ns = p.log_ns;
       m.publish_time_ns = p.publish_ns;
       m.data = std::move(p.bytes);
@@ -182,6 +183,24 @@ void Recorder::write_loop() {
     lk.lock();
     if (last && queue_.empty()) return;
   }
+}
+
+uint16_t Recorder::channel_of(const Pending& p) {
+  auto name = writers_.find(p.writer);
+  if (name == writers_.end())
+    name = writers_.emplace(p.writer, comm::writer_process(fleet_id_, agents_, p.writer)).first;
+  const Verdict v = judge_sample(topics_[p.topic].topic, p.bytes, name->second, agents_);
+  ++verdicts_[static_cast<std::size_t>(v)];
+  const ChannelKey key{p.topic, p.writer, v};
+  const auto it = channels_.find(key);
+  if (it != channels_.end()) return it->second;
+  const uint16_t id = file_->add_channel(schema_[p.topic], topics_[p.topic].topic, "cdr",
+                                         {{kWriterKey, comm::prefix_text(p.writer)},
+                                          {kProcessKey, name->second},
+                                          {kVerdictKey, verdict_name(v)}});
+  channels_.emplace(key, id);
+  sequence_.resize(static_cast<std::size_t>(id) + 1, 0);
+  return id;
 }
 
 bool Recorder::wait_matched(const std::map<std::string, int>& writers,
@@ -200,7 +219,8 @@ bool Recorder::wait_matched(const std::map<std::string, int>& writers,
   }
 }
 
-std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> Recorder::matched_writers(const std::string& topic) const {
+std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> Recorder::matched_writers(
+    const std::string& topic) const {
   for (std::size_t i = 0; i < topics_.size(); ++i)
     if (topics_[i].topic == topic) return taps_[i]->writers();
   return {};
@@ -216,6 +236,13 @@ void Recorder::stop() {
   cv_.notify_one();
   if (writer_.joinable()) writer_.join();
   file_->close();
+}
+
+std::map<std::string, uint64_t> Recorder::rejected() const {
+  std::map<std::string, uint64_t> out;
+  for (std::size_t v = 1; v < verdicts_.size(); ++v)
+    if (const uint64_t n = verdicts_[v].load()) out[verdict_name(static_cast<Verdict>(v))] = n;
+  return out;
 }
 
 std::map<std::string, uint64_t> Recorder::counts() const {

@@ -5,7 +5,12 @@
 // and its publish time (the writer's source timestamp). The readers keep a history deeper than
 // one tick's burst of replies and hand samples over at once, so the recorder neither slows the
 // fleet's reliable writers nor loses samples; the file is written off the DDS threads, by a
-// thread that takes the queued samples in batches (every 50 ms or 512 samples).
+// thread that takes the queued samples in batches (every 50 ms or 512 samples). Each sample
+// goes to the channel of its topic, its writer and the fleet's verdict on it
+// (recorder/sample_verdict.hpp): the channel's metadata names the writer's GUID prefix
+// (kWriterKey), its process (kProcessKey, "" for none of the fleet's) and the verdict
+// (kVerdictKey: "taken", or why the fleet drops such a sample).
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -21,6 +26,7 @@
 
 #include "comm/dds.hpp"
 #include "comm/raw_type.hpp"
+#include "recorder/sample_verdict.hpp"
 #include "records/mcap.hpp"
 
 namespace maptr::recorder {
@@ -38,6 +44,12 @@ std::vector<comm::FleetTopic> recorded_topics(Scope scope);
 /// Samples each of a fleet of `agents` agents' writers may send before the recorder takes
 /// them: the history depth of its readers.
 int32_t recorder_depth(int agents);
+
+/// Keys of a run.mcap channel's metadata: its writer's GUID prefix (24 hexadecimal digits), the
+/// process of the fleet that writer belongs to ("" for none) and the verdict on its samples.
+inline constexpr const char* kWriterKey = "writer";
+inline constexpr const char* kProcessKey = "process";
+inline constexpr const char* kVerdictKey = "verdict";
 
 /// For tests only: the environment variable that hides an agent's first answer writer from the
 /// recorder's match count (recorder.cpp).
@@ -65,16 +77,34 @@ class Recorder {
   void stop();
   /// Messages recorded per topic so far.
   std::map<std::string, uint64_t> counts() const;
+  /// Messages written so far that the fleet drops, by verdict ("forged", "undecodable",
+  /// "malformed"; kinds without any left out).
+  std::map<std::string, uint64_t> rejected() const;
 
  private:
   /// One sample taken from DDS, waiting for the file.
   struct Pending {
-    uint16_t channel;
+    uint16_t topic;  ///< index in topics_
+    eprosima::fastrtps::rtps::InstanceHandle_t writer;
     uint64_t log_ns, publish_ns;
     std::string bytes;
   };
+  /// A channel of the file: a topic, a writer and the verdict on its samples.
+  struct ChannelKey {
+    uint16_t topic;
+    eprosima::fastrtps::rtps::InstanceHandle_t writer;
+    Verdict verdict;
+    bool operator<(const ChannelKey& o) const {
+      if (topic != o.topic) return topic < o.topic;
+      if (writer != o.writer) return writer < o.writer;
+      return verdict < o.verdict;
+    }
+  };
   class Tap;
-  void push(uint16_t channel, const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes);
+  void push(uint16_t topic, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+            const eprosima::fastrtps::rtps::Time_t& source, std::string&& bytes);
+  /// On the file thread: the channel of `p`, added to the file at its first sample.
+  uint16_t channel_of(const Pending& p);
   /// On a receive thread, before it takes: naps when a sample woke it from a wait.
   void nap_if_woken();
   /// On a receive thread, after it took.
@@ -82,6 +112,14 @@ class Recorder {
   void write_loop();
 
   std::vector<comm::FleetTopic> topics_;
+  uint32_t fleet_id_;
+  int agents_;
+  std::vector<uint16_t> schema_;  ///< per topic
+  // The file thread's own:
+  std::map<eprosima::fastrtps::rtps::InstanceHandle_t, std::string> writers_;  ///< writer -> process
+  std::map<ChannelKey, uint16_t> channels_;
+  std::vector<uint32_t> sequence_;  ///< per channel
+  std::array<std::atomic<uint64_t>, 4> verdicts_{};
   std::unique_ptr<records::mcap::Writer> file_;
   std::vector<std::unique_ptr<Tap>> taps_;
   std::unique_ptr<comm::Participant> participant_;
@@ -89,7 +127,6 @@ class Recorder {
   std::condition_variable cv_;
   std::deque<Pending> queue_;
   std::vector<uint64_t> counts_;
-  std::vector<uint32_t> sequence_;
   bool stopping_ = false;
   std::thread writer_;
   std::string missing_;

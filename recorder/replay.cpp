@@ -2,21 +2,27 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
-#include <optional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
+#include "comm/checked_type.hpp"
 #include "comm/raw_type.hpp"
 #include "idl/maptrPubSubTypes.h"
+#include "recorder/recorder.hpp"
 
 namespace maptr::recorder {
 
 namespace dds = eprosima::fastdds::dds;
 using Clock = std::chrono::steady_clock;
+
+bool taken(const records::mcap::Channel& ch) {
+  const auto v = ch.metadata.find(kVerdictKey);
+  return v == ch.metadata.end() || v->second == verdict_name(Verdict::kTaken);
+}
 
 namespace {
 /// Preallocated payload of a topic the fleet does not know, bytes (longer samples reallocate).
@@ -24,19 +30,26 @@ constexpr uint32_t kUnknownTypeSize = 4096;
 constexpr auto kPoll = std::chrono::milliseconds(20);
 constexpr double kProgressPeriodS = 1.0;
 
-/// One writer per channel of the file, on the channel's topic with its schema's type name.
-std::map<uint16_t, dds::DataWriter*> make_writers(comm::Participant& p, const records::mcap::File& f) {
+/// One writer per topic of the file, with its schema's type name, for every channel replayed.
+std::map<uint16_t, dds::DataWriter*> make_writers(comm::Participant& p, const records::mcap::File& f,
+                                                  bool with_rejected) {
+  std::map<std::string, dds::DataWriter*> by_topic;
   std::map<uint16_t, dds::DataWriter*> out;
   for (const auto& [id, ch] : f.channels) {
     const auto s = f.schemas.find(ch.schema_id);
-    if (s == f.schemas.end() || ch.message_encoding != "cdr") continue;
-    const comm::FleetTopic* known = comm::find_fleet_topic(ch.topic);
-    const uint32_t size = known ? known->max_size : kUnknownTypeSize;
-    auto* topic = p.topic(ch.topic, new comm::RawType(s->second.name, size));
-    // Nothing repairs a lost sample of a replay: the lock-step topics go out reliably.
-    const comm::Profile profile = known && known->profile == comm::Profile::kLatched ? comm::Profile::kLatched
-                                                                                    : comm::Profile::kReliableStream;
-    out[id] = p.writer(topic, profile);
+    if (s == f.schemas.end() || ch.message_encoding != "cdr" || (!with_rejected && !taken(ch))) continue;
+    auto& w = by_topic[ch.topic];
+    if (!w) {
+      const comm::FleetTopic* known = comm::find_fleet_topic(ch.topic);
+      const uint32_t size = known ? known->max_size : kUnknownTypeSize;
+      auto* topic = p.topic(ch.topic, new comm::RawType(s->second.name, size));
+      // Nothing repairs a lost sample of a replay: the lock-step topics go out reliably.
+      const comm::Profile profile = known && known->profile == comm::Profile::kLatched
+                                        ? comm::Profile::kLatched
+                                        : comm::Profile::kReliableStream;
+      w = p.writer(topic, profile);
+    }
+    out[id] = w;
   }
   return out;
 }
@@ -45,16 +58,8 @@ std::map<uint16_t, dds::DataWriter*> make_writers(comm::Participant& p, const re
 std::optional<double> tick_time(const records::mcap::File& f, const records::mcap::Message& m) {
   const auto ch = f.channels.find(m.channel_id);
   if (ch == f.channels.end() || ch->second.topic != comm::topic::kTick) return std::nullopt;
-  msg::PlantTickPubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(m.data.size()));
-  std::memcpy(payload.data, m.data.data(), m.data.size());
-  payload.length = static_cast<uint32_t>(m.data.size());
   msg::PlantTick tick;
-  try {
-    if (!type.deserialize(&payload, &tick)) return std::nullopt;
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
+  if (!comm::decode<msg::PlantTickPubSubType>(m.data, tick)) return std::nullopt;
   return tick.t();
 }
 
@@ -75,7 +80,7 @@ ReplayResult replay(const records::mcap::File& file, const comm::DdsOptions& o, 
   ReplayResult res;
   if (file.messages.empty()) return res;
   comm::Participant p("replay", o);
-  const auto writers = make_writers(p, file);
+  const auto writers = make_writers(p, file, r.with_rejected);
   for (const auto& [id, w] : writers)
     if (file.channels.at(id).topic == comm::topic::kTick) wait_for_reader(w, r.wait_reader_s, stop);
   std::vector<const records::mcap::Message*> order;
@@ -99,7 +104,10 @@ ReplayResult replay(const records::mcap::File& file, const comm::DdsOptions& o, 
           t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(at_s)));
     }
     const auto w = writers.find(m->channel_id);
-    if (w == writers.end()) continue;
+    if (w == writers.end()) {
+      ++res.left_out;
+      continue;
+    }
     s.bytes = m->data;
     if (w->second->write(&s)) ++res.messages;
     if (progress && Clock::now() - last_progress > std::chrono::duration<double>(kProgressPeriodS)) {

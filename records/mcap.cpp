@@ -114,8 +114,10 @@ uint16_t Writer::add_schema(const std::string& name, const std::string& encoding
 }
 
 uint16_t Writer::add_channel(uint16_t schema_id, const std::string& topic,
-                             const std::string& message_encoding) {
-  Channel ch{static_cast<uint16_t>(channels_.size()), schema_id, topic, message_encoding, {}};
+                             const std::string& message_encoding,
+                             const std::map<std::string, std::string>& metadata) {
+  if (channels_.size() > 0xffff) throw RecordError(path_ + ": more than 65536 channels");
+  Channel ch{static_cast<uint16_t>(channels_.size()), schema_id, topic, message_encoding, metadata};
   channels_.push_back(ch);
   stats_.channel_message_counts[ch.id] = 0;
   put(channel_record(ch));

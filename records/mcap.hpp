@@ -77,8 +77,10 @@ class Writer {
 
   /// Returns the new schema's id (1, 2, ...).
   uint16_t add_schema(const std::string& name, const std::string& encoding, const std::string& data);
-  /// Returns the new channel's id (0, 1, ...).
-  uint16_t add_channel(uint16_t schema_id, const std::string& topic, const std::string& message_encoding);
+  /// Returns the new channel's id (0, 1, ...). A channel may be added after messages of others
+  /// (its record then precedes the chunk that holds its first message).
+  uint16_t add_channel(uint16_t schema_id, const std::string& topic, const std::string& message_encoding,
+                       const std::map<std::string, std::string>& metadata = {});
   void write(const Message& m);
   /// Ends the data section and writes the summary, footer and magic (once; also on destruction).
   void close();

@@ -219,7 +219,9 @@ std::vector<SummaryField> recording_keys() {
       {"recording.recorded.<topic>", "integer", "1", "Messages run.mcap holds of this topic (maptr/tick, maptr/agent_reply, ...: those of its record scope)"},
       {"recording.incomplete.<topic>.recorded", "integer", "1",
        "An answer topic of which run.mcap holds fewer messages than the plant used: the messages it holds"},
-      {"recording.incomplete.<topic>.taken_by_plant", "integer", "1", "The same topic: the answers the plant used (plant.answers_taken)"}
+      {"recording.incomplete.<topic>.taken_by_plant", "integer", "1", "The same topic: the answers the plant used (plant.answers_taken)"},
+      {"recording.rejected.<kind>", "integer", "1",
+       "Messages run.mcap holds that the fleet drops (forged, undecodable, malformed), in channels whose verdict says so; maptr replay leaves them out"}
   };
 }
 

@@ -4,9 +4,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <set>
 
 #include "deploy/cli/paths.hpp"
 #include "deploy/report/run_plot.hpp"
+#include "recorder/recorder.hpp"
 #include "recorder/replay.hpp"
 #include "records/mcap.hpp"
 
@@ -24,6 +27,39 @@ void on_signal(int) { replay_stop().store(true); }
 std::string mcap_path(const std::string& run) {
   return std::filesystem::is_directory(run) ? run + "/run.mcap" : run;
 }
+
+/// What a replay will leave out: "" when nothing, else e.g. "12 forged, 3 undecodable".
+std::string left_out_text(const records::mcap::File& file) {
+  std::map<std::string, std::size_t> n;
+  std::map<uint16_t, std::string> verdict;
+  for (const auto& [id, ch] : file.channels)
+    if (!recorder::taken(ch)) verdict[id] = ch.metadata.at(recorder::kVerdictKey);
+  for (const auto& m : file.messages)
+    if (const auto v = verdict.find(m.channel_id); v != verdict.end()) ++n[v->second];
+  std::string out;
+  for (const auto& [kind, count] : n) out += (out.empty() ? "" : ", ") + std::to_string(count) + " " + kind;
+  return out;
+}
+
+/// Whether the recording names its writers (run.mcap of this version; older ones do not).
+bool names_writers(const records::mcap::File& file) {
+  for (const auto& [id, ch] : file.channels)
+    if (!ch.metadata.count(recorder::kVerdictKey)) return false;
+  return true;
+}
+
+void say_what_is_replayed(const records::mcap::File& file, const ReplayArgs& a) {
+  const std::string dropped = left_out_text(file);
+  if (!names_writers(file))
+    std::fprintf(stderr, "maptr: %s names no writers: every sample is replayed, whoever sent it\n",
+                 a.run.c_str());
+  else if (!dropped.empty() && !a.with_rejected)
+    std::fprintf(stderr,
+                 "maptr: leaving out the samples the fleet dropped (%s); --with-rejected sends them too\n",
+                 dropped.c_str());
+  else if (!dropped.empty())
+    std::fprintf(stderr, "maptr: replaying the samples the fleet dropped too (%s)\n", dropped.c_str());
+}
 }  // namespace
 
 CLI::App* add_replay_command(CLI::App& app, ReplayArgs& a) {
@@ -36,6 +72,9 @@ CLI::App* add_replay_command(CLI::App& app, ReplayArgs& a) {
       ->check(CLI::Range(0, kMaxDomain));
   c->add_option("--wait-reader", a.wait_reader_s, "wait up to this many seconds for a reader of the ticks")
       ->check(CLI::NonNegativeNumber);
+  c->add_flag(
+      "--with-rejected", a.with_rejected,
+      "also publish the samples the fleet dropped (forged, undecodable, malformed: run.mcap marks them)");
   c->add_flag("--quiet", a.quiet, "no progress lines");
   return c;
 }
@@ -63,9 +102,14 @@ int cmd_replay(const ReplayArgs& a) {
   o.fleet_id = 0;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  if (!a.quiet)
-    std::fprintf(stderr, "maptr: replaying %s (%zu messages on %zu topics) on domain %d, %g simulated s per s\n",
-                 path.c_str(), file.messages.size(), file.channels.size(), o.domain, a.rate);
+  if (!a.quiet) {
+    std::set<std::string> topics;
+    for (const auto& [id, ch] : file.channels) topics.insert(ch.topic);
+    std::fprintf(stderr,
+                 "maptr: replaying %s (%zu messages on %zu topics) on domain %d, %g simulated s per s\n",
+                 path.c_str(), file.messages.size(), topics.size(), o.domain, a.rate);
+  }
+  say_what_is_replayed(file, a);
   const auto progress = [&](uint64_t n) {
     if (!a.quiet)
       std::fprintf(stderr, "maptr: replayed %llu of %zu\n", static_cast<unsigned long long>(n),
@@ -74,10 +118,14 @@ int cmd_replay(const ReplayArgs& a) {
   recorder::ReplayOptions r;
   r.rate = a.rate;
   r.wait_reader_s = a.wait_reader_s;
+  r.with_rejected = a.with_rejected;
   const auto res = recorder::replay(file, o, r, replay_stop(), progress);
   std::printf("replayed    %llu messages, %.1f simulated s in %.1f s (the run took %.1f s)\n",
               static_cast<unsigned long long>(res.messages), res.simulated_s, res.wall_s, res.recorded_s);
-  return res.messages == file.messages.size() ? kExitOk : kExitFailed;
+  if (res.left_out > 0)
+    std::printf("left out    %llu messages the fleet dropped\n",
+                static_cast<unsigned long long>(res.left_out));
+  return res.messages + res.left_out == file.messages.size() ? kExitOk : kExitFailed;
 }
 
 int cmd_plot(const PlotArgs& a) {

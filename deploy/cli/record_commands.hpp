@@ -11,6 +11,7 @@ struct ReplayArgs {
   double rate = 1.0;
   int domain = -1;
   double wait_reader_s = 5.0;
+  bool with_rejected = false;  ///< also the samples the fleet dropped
   bool quiet = false;
 };
 

@@ -12,6 +12,7 @@
 
 #include "comm/fleet_guid.hpp"
 #include "comm/fleet_ids.hpp"
+#include "comm/raw_type.hpp"
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/secure_domain.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
@@ -242,17 +243,20 @@ void Fleet::stop_recorder() {
   recorder_->stop();
   std::string counts;
   for (const auto& [topic, n] : recorder_->counts()) counts += " " + topic + " " + std::to_string(n);
-  log_.info("recorded run.mcap:{}", counts);
   rec_.recorded = recorder_->counts();
+  rec_.recorded_rejected = recorder_->rejected();
+  std::string dropped;
+  for (const auto& [kind, n] : rec_.recorded_rejected) dropped += " " + kind + " " + std::to_string(n);
+  log_.info("recorded run.mcap:{}{}", counts, dropped.empty() ? "" : "; marked as dropped by the fleet:" + dropped);
 }
 
 void Fleet::make_secure_domain() {
   // A private CA and one identity per process (and the launcher) in RUN_DIR/security.
   const auto t0 = Clock::now();
   const auto domain = SecureDomain::create(o_.run_dir + "/security", o_.domain);
-  domain.add_identity({"launcher", fleet_publish_topics("launcher")});
+  domain.add_identity({"launcher", comm::published_topics("launcher")});
   domain.add_identity({"recorder", {}});  // run.mcap: reads every topic, writes none
-  for (const auto& c : kids_) domain.add_identity({c.name, fleet_publish_topics(c.name)});
+  for (const auto& c : kids_) domain.add_identity({c.name, comm::published_topics(c.name)});
   dds_.security_dir = domain.files().dir;
   env_["MAPTR_SECURITY_DIR"] = dds_.security_dir;
   log_.info("secure domain: CA and {} identities in {} ({:.2f} s)", kids_.size() + 1, dds_.security_dir,

@@ -11,13 +11,6 @@ namespace maptr::deploy::fleet {
 namespace {
 /// Rejected NodeReady samples logged one by one; the rest only counted.
 constexpr long kLoggedRejects = 20;
-
-std::string prefix_text(const eprosima::fastrtps::rtps::InstanceHandle_t& h) {
-  static const char* hex = "0123456789abcdef";
-  std::string s;
-  for (const auto b : writer_prefix(h)) s += {hex[b >> 4], hex[b & 15]};
-  return s;
-}
 }  // namespace
 
 ReadyClaim Fleet::claim_of(const msg::NodeReady& r, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
@@ -71,7 +64,7 @@ std::vector<Child*> Fleet::believed_ready() {
     const long n = ++rec_.ready_rejected[verdict_name(v)];
     if (n <= kLoggedRejects)
       log_.warn("rejected a {} NodeReady: name '{}', pid {}, writer {}{}", verdict_name(v),
-                r.name().substr(0, 64), r.pid(), prefix_text(h),
+                r.name().substr(0, 64), r.pid(), comm::prefix_text(h),
                 n == kLoggedRejects ? " (no more of this kind are logged)" : "");
   }
   return out;

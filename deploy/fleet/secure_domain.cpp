@@ -12,9 +12,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "comm/dds.hpp"
-#include "config/scenario.hpp"
-
 extern char** environ;
 
 namespace maptr::deploy::fleet {
@@ -64,17 +61,6 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 }  // namespace
-
-std::vector<std::string> fleet_publish_topics(const std::string& name) {
-  namespace t = comm::topic;
-  int side = 0, index = 0;
-  if (name == "plant") return {t::kTick, t::kGate, t::kReady};
-  if (name == "central") return {t::kCentral, t::kReady};
-  if (name == "group-L" || name == "group-R") return {t::kGroup, t::kReady};
-  if (name == "launcher") return {t::kMembership, t::kControl};
-  if (config::parse_agent_name(name, side, index)) return {t::kAgentReply, t::kReady};
-  return {};
-}
 
 std::string governance_xml(int domain) {
   std::ostringstream x;

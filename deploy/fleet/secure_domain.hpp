@@ -19,11 +19,6 @@ struct Grant {
   std::vector<std::string> publish;  ///< topic names (comm::topic)
 };
 
-/// The topics the process `name` of a fleet writes (plant: ticks, fault gates and readiness;
-/// central: its commands; groups: their status; agents: their replies; all of them readiness;
-/// the launcher: membership and control). Empty for a name that is no process of a fleet.
-std::vector<std::string> fleet_publish_topics(const std::string& name);
-
 /// The governance document of DDS domain `domain`.
 std::string governance_xml(int domain);
 /// The permissions document of grant `g` on DDS domain `domain`, valid from `not_before` to

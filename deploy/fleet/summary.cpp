@@ -185,6 +185,7 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["processes"] = processes_json(kids);
   if (!r.hosts.is_null()) s["hosts"] = r.hosts;
   s["recording"] = recording_check(r.recorded, plant);
+  if (s["recording"].is_object()) s["recording"]["rejected"] = r.recorded_rejected;
   const std::string trace = run_dir + "/trace.csv";
   s["trace_sha256"] = std::filesystem::exists(trace) ? sha256_of(trace) : "";
   s["status"] = kids.empty() ? r.status : final_status(r.status, plant, kids.front());

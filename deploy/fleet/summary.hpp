@@ -36,6 +36,8 @@ struct RunRecord {
   nlohmann::json hosts;  ///< a fleet on several hosts: its hosts (else null)
   /// Messages run.mcap recorded per topic (empty without a recording).
   std::map<std::string, uint64_t> recorded;
+  /// Messages run.mcap marks as dropped by the fleet, by verdict (recorder/sample_verdict.hpp).
+  std::map<std::string, uint64_t> recorded_rejected;
 };
 
 /// run.mcap against what the plant used: {"recorded": {topic: n}, "incomplete": {topic:

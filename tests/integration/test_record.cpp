@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,10 +11,13 @@
 #include <set>
 #include <tuple>
 
+#include "comm/checked_type.hpp"
 #include "comm/dds.hpp"
 #include "comm/lockstep.hpp"
+#include "comm/raw_type.hpp"
 #include "fleet_runner.hpp"
 #include "idl/maptrPubSubTypes.h"
+#include "recorder/recorder.hpp"
 #include "records/mcap.hpp"
 #include "records/trace.hpp"
 
@@ -48,16 +50,14 @@ RecordedRun& recorded() {
 
 template <class PubSubType, class Msg>
 Msg decode(const std::string& bytes) {
-  PubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(bytes.size()));
-  std::memcpy(payload.data, bytes.data(), bytes.size());
-  payload.length = static_cast<uint32_t>(bytes.size());
   Msg m;
-  EXPECT_TRUE(type.deserialize(&payload, &m));
+  EXPECT_TRUE(comm::decode<PubSubType>(bytes, m));
   return m;
 }
 
-msg::PlantTick decode_tick(const std::string& bytes) { return decode<msg::PlantTickPubSubType, msg::PlantTick>(bytes); }
+msg::PlantTick decode_tick(const std::string& bytes) {
+  return decode<msg::PlantTickPubSubType, msg::PlantTick>(bytes);
+}
 
 std::map<std::string, std::vector<const records::mcap::Message*>> by_topic(const records::mcap::File& f) {
   std::map<std::string, std::vector<const records::mcap::Message*>> out;
@@ -72,15 +72,33 @@ TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
   ASSERT_EQ(run.result.exit_code, 0) << run.result.output;
   const auto f = records::mcap::read_file(run.out + "/run.mcap");
   const auto topics = by_topic(f);
-  ASSERT_EQ(f.channels.size(), 8u);
+  // Every topic, in one channel per writer: each names its writer, a process of the fleet that
+  // publishes the topic, and the fleet's verdict "taken" (nobody sent anything bad).
+  // (A channel appears with its writer's first sample: a topic nobody wrote on has none.)
+  for (const char* t :
+       {"maptr/tick", "maptr/agent_reply", "maptr/group", "maptr/central", "maptr/ready", "maptr/control"})
+    EXPECT_TRUE(topics.count(t)) << t;
+  for (const auto& [topic, messages] : topics) EXPECT_NE(comm::find_fleet_topic(topic), nullptr) << topic;
+  std::map<std::string, std::set<std::string>> writers_of;
   for (const auto& [id, ch] : f.channels) {
+    EXPECT_EQ(ch.metadata.at(recorder::kVerdictKey), "taken") << ch.topic;
+    EXPECT_TRUE(comm::publishes(ch.metadata.at(recorder::kProcessKey), ch.topic))
+        << ch.topic << " from " << ch.metadata.at(recorder::kProcessKey);
+    EXPECT_EQ(ch.metadata.at(recorder::kWriterKey).size(), 24u);
+    writers_of[ch.topic].insert(ch.metadata.at(recorder::kProcessKey));
     EXPECT_EQ(ch.message_encoding, "cdr");
     EXPECT_EQ(f.schemas.at(ch.schema_id).encoding, "omgidl");
     EXPECT_EQ(f.schemas.at(ch.schema_id).name.rfind("maptr::msg::", 0), 0u)
         << f.schemas.at(ch.schema_id).name;
   }
+  EXPECT_EQ(writers_of["maptr/agent_reply"].size(), static_cast<std::size_t>(kAgents));
+  EXPECT_EQ(writers_of["maptr/ready"].size(), static_cast<std::size_t>(kAgents + 4));
+  EXPECT_EQ(writers_of["maptr/tick"], std::set<std::string>{"plant"});
+  EXPECT_EQ(writers_of["maptr/control"], std::set<std::string>{"launcher"});
+  EXPECT_TRUE(run.result.summary["recording"]["rejected"].empty()) << run.result.summary["recording"].dump();
   // The summary's own check agrees: nothing the plant used is missing from run.mcap.
-  EXPECT_TRUE(run.result.summary["recording"]["incomplete"].empty()) << run.result.summary["recording"].dump();
+  EXPECT_TRUE(run.result.summary["recording"]["incomplete"].empty())
+      << run.result.summary["recording"].dump();
   EXPECT_GT(run.result.summary["recording"]["recorded"].value("maptr/agent_reply", 0), 0);
   const auto ticks = static_cast<std::size_t>(run.result.summary.value("ticks", 0.0));
   // Ticks 0..ticks, one PlantTick each, and a copy for every tick the plant sent again.
@@ -184,7 +202,8 @@ TEST(Record, AReplayIsSeenLiveByAReaderOfTheFleetsTypes) {
   comm::Inbox<msg::PlantTick> ticks(signal);
   {
     comm::Participant p("replay-reader", o);
-    p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kReliableStream, &ticks, 4096);
+    p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kReliableStream, &ticks,
+             4096);
     // The replay waits for this reader before its first message.
     const auto r = maptr::testing::run_cli({"replay", run.out, "--rate", "4", "--domain",
                                             std::to_string(o.domain), "--wait-reader", "30", "--quiet"},
@@ -212,7 +231,8 @@ TEST(Record, AnAgentWhoseWriterTheRecorderNeverMatchesIsStartedAgainAndRecorded)
   TempDir tmp;
   const std::string out = tmp.path() + "/deaf";
   setenv("MAPTR_TEST_RECORDER_DEAF_TO", "L1", 1);
-  const auto r = maptr::testing::run_cli(maptr::testing::run_args(out, {"--agents", "8", "--duration", "2"}), out, 300);
+  const auto r =
+      maptr::testing::run_cli(maptr::testing::run_args(out, {"--agents", "8", "--duration", "2"}), out, 300);
   unsetenv("MAPTR_TEST_RECORDER_DEAF_TO");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.summary.value("status", ""), "ok");
@@ -242,7 +262,8 @@ TEST(Record, CompressedRecordingsHoldTheSameMessagesInLessSpace) {
   for (const std::string c : {"none", "zstd", "lz4"}) {
     const std::string out = tmp.path() + "/" + c;
     const auto r = maptr::testing::run_cli(
-        maptr::testing::run_args(out, {"--agents", "16", "--duration", "20", "--record-compression", c}), out, 600);
+        maptr::testing::run_args(out, {"--agents", "16", "--duration", "20", "--record-compression", c}), out,
+        600);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     size[c] = std::filesystem::file_size(out + "/run.mcap");
     file[c] = records::mcap::read_file(out + "/run.mcap");

@@ -12,14 +12,20 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <set>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
+#include "comm/checked_type.hpp"
 #include "comm/dds.hpp"
 #include "comm/fleet_ids.hpp"
 #include "comm/raw_type.hpp"
 #include "comm/shm_files.hpp"
 #include "idl/maptrPubSubTypes.h"
+#include "recorder/recorder.hpp"
+#include "records/mcap.hpp"
 #include "tests/integration/fleet_runner.hpp"
 
 using namespace maptr::testing;
@@ -46,12 +52,16 @@ class Rogue {
     auto& p = *p_;
     p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &ticks_);
     tick_ = p.writer(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &m_[0]);
-    reply_ = p.writer(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream, &m_[1]);
-    group_ = p.writer(p.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), comm::Profile::kStream, &m_[2]);
-    central_ = p.writer(p.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), comm::Profile::kStream, &m_[3]);
-    member_ =
-        p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched, &m_[4]);
-    control_ = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched, &m_[5]);
+    reply_ = p.writer(p.topic<msg::AgentReplyPubSubType>(comm::topic::kAgentReply), comm::Profile::kStream,
+                      &m_[1]);
+    group_ =
+        p.writer(p.topic<msg::GroupStatusPubSubType>(comm::topic::kGroup), comm::Profile::kStream, &m_[2]);
+    central_ = p.writer(p.topic<msg::CentralCommandPubSubType>(comm::topic::kCentral), comm::Profile::kStream,
+                        &m_[3]);
+    member_ = p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership),
+                       comm::Profile::kLatched, &m_[4]);
+    control_ =
+        p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched, &m_[5]);
     gate_ = p.writer(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &m_[6]);
   }
 
@@ -79,10 +89,10 @@ class Rogue {
       x.run_state(state);
       tick_->write(&x);
     };
-    tick(k + 2, now.t() + 0.02, msg::RUN_FINISHED);  // a forged end of the run
+    tick(k + 2, now.t() + 0.02, msg::RUN_FINISHED);     // a forged end of the run
     tick(1000000000000ull, now.t(), msg::RUN_RUNNING);  // far in the future
-    tick(k + 1, 50.0, msg::RUN_RUNNING);             // simulated time ahead (a clock for the launcher)
-    tick(1, 0.01, msg::RUN_RUNNING);                 // a replay of an old tick
+    tick(k + 1, 50.0, msg::RUN_RUNNING);                // simulated time ahead (a clock for the launcher)
+    tick(1, 0.01, msg::RUN_RUNNING);                    // a replay of an old tick
     msg::PlantTick nan = now;
     nan.tick(k + 1);
     nan.v_x(kNaN);
@@ -111,7 +121,8 @@ class Rogue {
     g.side(msg::SIDE_L);
     g.active(std::vector<uint8_t>(100000, 1));
     group_->write(&g);
-    g.active(std::vector<uint8_t>(now.sides()[msg::SIDE_L].active().size(), 0));  // a well-formed "nobody drives"
+    g.active(
+        std::vector<uint8_t>(now.sides()[msg::SIDE_L].active().size(), 0));  // a well-formed "nobody drives"
     for (uint64_t at = k; at < k + 50; ++at) {
       g.tick(at);
       group_->write(&g);
@@ -158,6 +169,60 @@ class Rogue {
   eprosima::fastdds::dds::DataWriter *tick_, *reply_, *group_, *central_, *member_, *control_, *gate_;
 };
 
+/// run.mcap of run `out` against its summary: each channel names its writer and the fleet's
+/// verdict; the messages of the channels marked as dropped add up, kind by kind, to
+/// summary.json's recording.rejected. A replay to a reader of the ticks sends only ticks the
+/// fleet took and says how many messages it left out. Returns the file's dropped messages by kind.
+std::map<std::string, long> expect_rejects_marked(const std::string& out, const nlohmann::json& s) {
+  const auto f = maptr::records::mcap::read_file(out + "/run.mcap");
+  std::map<std::string, long> dropped;
+  // A tick by its number, time, speed and energy: a forgery differs from the real one in one.
+  using TickKey = std::tuple<uint64_t, double, double, double>;
+  const auto key = [](const msg::PlantTick& t) { return TickKey{t.tick(), t.t(), t.v_x(), t.energy_J()}; };
+  std::set<TickKey> taken_ticks;
+  for (const auto& m : f.messages) {
+    const auto& ch = f.channels.at(m.channel_id);
+    const std::string verdict = ch.metadata.at(maptr::recorder::kVerdictKey);
+    if (verdict != "taken") ++dropped[verdict];
+    msg::PlantTick t;
+    if (verdict == "taken" && ch.topic == comm::topic::kTick &&
+        comm::decode<msg::PlantTickPubSubType>(m.data, t))
+      taken_ticks.insert(key(t));
+    if (verdict == "taken")
+      EXPECT_TRUE(comm::publishes(ch.metadata.at(maptr::recorder::kProcessKey), ch.topic));
+  }
+  long total = 0;
+  for (const auto& [kind, n] : dropped) {
+    EXPECT_EQ(s["recording"]["rejected"].value(kind, 0L), n) << kind << " " << s["recording"].dump();
+    total += n;
+  }
+  EXPECT_EQ(s["recording"]["rejected"].size(), dropped.size()) << s["recording"].dump();
+  comm::DdsOptions o;
+  o.domain = private_domain();
+  comm::Signal signal;
+  comm::Inbox<msg::PlantTick> ticks(signal);
+  {
+    comm::Participant p("replay-reader", o);
+    p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kReliableStream, &ticks,
+             8192);
+    const auto r = run_cli({"replay", out, "--rate", "4", "--domain", std::to_string(o.domain),
+                            "--wait-reader", "30", "--quiet"},
+                           out + "-replay", 300);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("left out    " + std::to_string(total) + " messages the fleet dropped"),
+              std::string::npos)
+        << r.output;
+  }
+  // Every tick the reader got is one the fleet took (a reliable keep-last writer may drop some
+  // under load: a replay is for watching, so the test counts no losses).
+  const auto got = ticks.drain();
+  EXPECT_GT(got.size(), 0u);
+  std::size_t foreign = 0;
+  for (const auto& [t, h] : got) foreign += taken_ticks.count(key(t)) ? 0 : 1;
+  EXPECT_EQ(foreign, 0u) << "the replay sent ticks the fleet did not take (of " << got.size() << ")";
+  return dropped;
+}
+
 TEST(Rogue, EveryBadSampleIsRejectedCountedAndTheTraceIsUnchanged) {
   TempDir tmp;
   const std::string ref = tmp.path() + "/reference";
@@ -195,6 +260,10 @@ TEST(Rogue, EveryBadSampleIsRejectedCountedAndTheTraceIsUnchanged) {
   EXPECT_GT(rejected.value("central", 0), 0);
   EXPECT_GT(rejected.value("group-L", 0), 0);
   EXPECT_GT(rejected.value("L0", 0), 0);
+  // run.mcap keeps the rogue's samples, marked: it is no process of the fleet.
+  auto dropped = expect_rejects_marked(out, s);
+  std::cout << "run.mcap marks as dropped: " << nlohmann::json(dropped).dump() << "\n";
+  EXPECT_GT(dropped["forged"], 0);
 }
 
 /// Participants that carry the rightful ids of group-L and central (the fleet's GUID prefix with
@@ -373,6 +442,13 @@ TEST(Rogue, MalformedAnswersUnderTheRightfulIdsAndUndecodableSamplesAreCounted) 
   // The wear watch never saw the ledgers go backwards.
   for (const char* side : {"L", "R"})
     EXPECT_EQ(s["plant"]["group_wear"][side]["regressions"], 0) << s["plant"]["group_wear"].dump();
+  // run.mcap marks the malformed answers and every undecodable sample (the latched topics
+  // deliver all 4 x 20 to the recorder).
+  auto dropped = expect_rejects_marked(out, s);
+  std::cout << "run.mcap marks as dropped: " << nlohmann::json(dropped).dump() << "\n";
+  EXPECT_EQ(dropped["undecodable"], 4 * kUndecodable);
+  EXPECT_GT(dropped["malformed"], 0);
+  EXPECT_LE(dropped["malformed"], malformed);
 }
 
 TEST(Rogue, ForgedReadinessIsRejectedCountedAndSignalsNothing) {

@@ -5,7 +5,8 @@
 //   - the stream reader reads every record with every CRC checked; the indexed reader reads the
 //     summary, the chunk indexes and every message; every chunk is compressed as the run's
 //     scenario.yaml says (record_compression);
-//   - every channel's message count equals the statistics', and holds what the fleet published:
+//   - every channel names its writer (GUID prefix and process) and its message count equals the
+//     statistics'; the samples the fleet took (verdict "taken") hold what the fleet published:
 //     one PlantTick per tick (and a copy per repair), every answer the lock-step needs, one
 //     GroupStatus per group per tick, one CentralCommand per tick;
 //   - every PlantTick decoded here equals the trace.csv row of its tick.
@@ -64,22 +65,32 @@ for (const [id, s] of reader.schemasById) {
   check(`schema ${s.name} is omgidl`, s.encoding === "omgidl");
   decoders.set(id, new MessageReader(s.name, parseIDL(new TextDecoder().decode(s.data))));
 }
+// One channel per topic and writer; its metadata names the writer's GUID prefix, its process and
+// the fleet's verdict on its samples ("taken" on a run nobody attacked).
 const byTopic = {};
-for (const ch of reader.channelsById.values()) byTopic[ch.topic] = [];
+const perChannel = new Map();
+for (const ch of reader.channelsById.values()) {
+  byTopic[ch.topic] = [];
+  perChannel.set(ch.id, 0);
+  check(`${ch.topic} channel ${ch.id} names its writer`,
+        /^[0-9a-f]{24}$/.test(ch.metadata.get("writer") ?? "") && (ch.metadata.get("process") ?? "") !== "",
+        JSON.stringify([...ch.metadata]));
+}
 for await (const m of reader.readMessages()) {
   const ch = reader.channelsById.get(m.channelId);
-  byTopic[ch.topic].push(decoders.get(ch.schemaId).readMessage(m.data));
+  perChannel.set(ch.id, perChannel.get(ch.id) + 1);
+  if (ch.metadata.get("verdict") === "taken") byTopic[ch.topic].push(decoders.get(ch.schemaId).readMessage(m.data));
 }
 const stats = reader.statistics;
 console.log(
   `run.mcap: ${bytes.length} bytes, ${reader.channelsById.size} channels, ${stats.messageCount} messages, ` +
     `${reader.chunkIndexes.length} chunks (${[...compressions].join(",") || "uncompressed"})`,
 );
-for (const ch of reader.channelsById.values()) {
-  const n = byTopic[ch.topic].length;
-  console.log(`  ${ch.topic.padEnd(20)} ${String(n).padStart(8)}  ${reader.schemasById.get(ch.schemaId).name}`);
-  check(`${ch.topic}: statistics count`, Number(stats.channelMessageCounts.get(ch.id)) === n);
-}
+for (const topic of Object.keys(byTopic).sort())
+  console.log(`  ${topic.padEnd(20)} ${String(byTopic[topic].length).padStart(8)} taken`);
+for (const ch of reader.channelsById.values())
+  check(`${ch.topic} channel ${ch.id}: statistics count`,
+        Number(stats.channelMessageCounts.get(ch.id)) === perChannel.get(ch.id));
 
 // 3. Counts against what the fleet published: one PlantTick per tick, and a copy for every
 // tick the plant sent again (plant.tick_repairs); every answer the lock-step needs (an agent

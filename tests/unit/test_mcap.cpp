@@ -156,3 +156,36 @@ TEST(Mcap, ACorruptCompressedChunkIsRefusedAndAnUnknownCompressionToo) {
   std::filesystem::remove(path);
   EXPECT_THROW(mcap::Writer(temp_path("bz2.mcap"), "", "maptr test", 1024, "bz2"), RecordError);
 }
+
+TEST(Mcap, AChannelAddedBetweenMessagesKeepsItsMetadataAndItsMessages) {
+  // The recorder adds a channel at the first sample of a writer, while a chunk is open.
+  const std::string path = temp_path("late_channel.mcap");
+  for (const std::string compression : {"", "zstd"}) {
+    {
+      mcap::Writer w(path, "", "maptr test", 256, compression);
+      const uint16_t a = w.add_schema("pkg::A", "omgidl", "module pkg { struct A { long x; }; };");
+      const uint16_t first = w.add_channel(a, "t/a", "cdr", {{"writer", "0001"}, {"verdict", "taken"}});
+      for (uint32_t i = 0; i < 40; ++i) {
+        if (i == 25) {
+          EXPECT_EQ(w.add_channel(a, "t/a", "cdr", {{"writer", "0002"}, {"verdict", "forged"}}), 1);
+        }
+        mcap::Message m;
+        m.channel_id = i < 25 ? first : static_cast<uint16_t>(i % 2);
+        m.sequence = i;
+        m.log_time_ns = 100 + i;
+        m.data = std::string(20, char('a' + i % 26));
+        w.write(m);
+      }
+    }
+    const auto f = mcap::read_file(path);
+    ASSERT_EQ(f.channels.size(), 2u) << compression;
+    EXPECT_EQ(f.channels.at(0).topic, "t/a");
+    EXPECT_EQ(f.channels.at(1).topic, "t/a");
+    EXPECT_EQ(f.channels.at(0).metadata.at("verdict"), "taken");
+    EXPECT_EQ(f.channels.at(1).metadata.at("writer"), "0002");
+    EXPECT_EQ(f.channels.at(1).metadata.at("verdict"), "forged");
+    ASSERT_EQ(f.messages.size(), 40u);
+    EXPECT_EQ(f.statistics.channel_message_counts.at(1), 8u) << "messages 25, 27, ..., 39";
+  }
+  std::filesystem::remove(path);
+}
