@@ -31,7 +31,7 @@ for i in $(seq 1 "$pairs"); do
       [ -n "$top_pid" ] && cpu=$(awk -v hz="$(getconf CLK_TCK)" '{printf "%.2f", ($14 + $15) / hz}' "/proc/$top_pid/stat")
       tmux -L "$server" kill-server 2>/dev/null || true
     fi
-    echo "$mode $i $(jq -r '[.real_time_factor, .trace_sha256, (.status | split(":")[0])] | @tsv' "$dir/summary.json") $cpu" |
+    echo "$mode $i $(python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); print(s["real_time_factor"], s["trace_sha256"], s["status"].split(":")[0], sep="\t")' "$dir/summary.json") $cpu" |
       tee -a "$out/rtf.txt"
   done
 done
