@@ -179,8 +179,11 @@ TEST(Record, McapReaderAndFoxgloveDeserialiserReadTheRun) {
   const std::string dir = MAPTR_MCAP_CHECK_DIR;
   // npm ci once per build tree (the versions of package-lock.json).
   if (!std::filesystem::exists(dir + "/node_modules/@mcap/support")) {
-    ASSERT_EQ(std::system(("cd '" + dir + "' && npm ci --no-audit --no-fund > npm-ci.log 2>&1").c_str()), 0)
-        << "npm ci failed; see " << dir << "/npm-ci.log";
+    const int npm = std::system(("cd '" + dir + "' && npm ci --no-audit --no-fund > npm-ci.log 2>&1").c_str());
+    std::ifstream npm_log(dir + "/npm-ci.log");
+    const std::string npm_out((std::istreambuf_iterator<char>(npm_log)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(npm, 0) << "npm ci failed (" << dir << "/npm-ci.log):\n"
+                      << npm_out.substr(npm_out.size() > 2000 ? npm_out.size() - 2000 : 0);
   }
   const std::string log = dir + "/check.log";
   const int rc =
