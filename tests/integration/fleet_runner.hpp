@@ -16,6 +16,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -52,6 +53,12 @@ class TempDir {
 };
 
 /// A DDS domain no other test run uses at the same time (derived from the PID and a counter).
+/// The whole text of a file ("" when it cannot be read).
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 inline int private_domain() {
   static int counter = 0;
   return 100 + (static_cast<int>(getpid()) * 7 + counter++) % 120;

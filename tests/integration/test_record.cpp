@@ -23,6 +23,7 @@
 
 using namespace maptr;
 using maptr::testing::CliResult;
+using maptr::testing::read_text;
 using maptr::testing::TempDir;
 
 namespace {
@@ -180,16 +181,14 @@ TEST(Record, McapReaderAndFoxgloveDeserialiserReadTheRun) {
   // npm ci once per build tree (the versions of package-lock.json).
   if (!std::filesystem::exists(dir + "/node_modules/@mcap/support")) {
     const int npm = std::system(("cd '" + dir + "' && npm ci --no-audit --no-fund > npm-ci.log 2>&1").c_str());
-    std::ifstream npm_log(dir + "/npm-ci.log");
-    const std::string npm_out((std::istreambuf_iterator<char>(npm_log)), std::istreambuf_iterator<char>());
+    const std::string npm_out = read_text(dir + "/npm-ci.log");
     ASSERT_EQ(npm, 0) << "npm ci failed (" << dir << "/npm-ci.log):\n"
                       << npm_out.substr(npm_out.size() > 2000 ? npm_out.size() - 2000 : 0);
   }
   const std::string log = dir + "/check.log";
   const int rc =
       std::system(("node '" + dir + "/check_run_mcap.mjs' '" + run.out + "' > '" + log + "' 2>&1").c_str());
-  std::ifstream in(log);
-  const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string out = read_text(log);
   std::cout << out;
   EXPECT_EQ(rc, 0) << out;
 }
@@ -241,8 +240,7 @@ TEST(Record, AnAgentWhoseWriterTheRecorderNeverMatchesIsStartedAgainAndRecorded)
   EXPECT_EQ(r.summary.value("status", ""), "ok");
   const auto rematched = r.summary.value("discovery_rematched", nlohmann::json::array());
   EXPECT_NE(std::find(rematched.begin(), rematched.end(), "L1"), rematched.end()) << r.summary.dump();
-  std::ifstream log(out + "/logs/launcher.log");
-  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  const std::string text = read_text(out + "/logs/launcher.log");
   EXPECT_NE(text.find("recorder did not match L1's writer"), std::string::npos) << text;
   // The started-again L1 (side L, index 1) answers at least in its idle slots, one tick in ten:
   // run.mcap holds them.

@@ -392,12 +392,6 @@ class ReadyForger {
   eprosima::fastdds::dds::DataWriter* w_ = nullptr;
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 }  // namespace
 

@@ -34,11 +34,6 @@ constexpr double kAttack_s = 5.0;
 /// The tick index of the outsiders' forgeries (their own reader receives those).
 constexpr uint64_t kForgedTick = 1000000;
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 /// The run's trace hash without --secure (computed once).
 const nlohmann::json& plain_summary() {
   static nlohmann::json s = [] {
