@@ -87,26 +87,13 @@ std::shared_ptr<spdlog::logger> make_logger(const ProcessArgs& a) {
 namespace maptr::comm {
 
 namespace {
-
-/// True when the hook `env` (MAPTR_TEST_SILENT_ONCE, MAPTR_TEST_ABORT_ONCE) names this process
-/// and its file is not there yet (the file is then created).
-bool hooked_once(const char* env, const std::string& name) {
-  const char* hook = std::getenv(env);
-  if (!hook) return false;
-  const std::string h = hook;
-  const auto colon = h.find(':');
-  if (colon == std::string::npos || h.substr(0, colon) != name) return false;
-  const std::string path = h.substr(colon + 1);
-  if (std::ifstream(path).good()) return false;
-  std::ofstream(path) << name << "\n";
-  return true;
-}
-
+ReadyGate ready_gate = nullptr;
 }  // namespace
 
+void set_ready_gate(ReadyGate gate) { ready_gate = gate; }
+
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind) {
-  if (hooked_once(kTestAbortOnceEnv, name)) std::abort();
-  if (hooked_once(kTestSilentOnceEnv, name)) return;
+  if (ready_gate != nullptr && !ready_gate(name)) return;
   msg::NodeReady r;
   r.name(name);
   r.kind(kind);

@@ -45,16 +45,15 @@ std::string make_thread_realtime(int priority);
 
 namespace maptr::comm {
 
-/// Test hook (environment): "NAME:PATH" makes process NAME withhold its NodeReady while the
-/// file PATH does not exist, and create it: the first start of NAME never reports ready.
-inline constexpr const char* kTestSilentOnceEnv = "MAPTR_TEST_SILENT_ONCE";
-/// Test hook (environment): "NAME:PATH" makes process NAME abort (SIGABRT, as a failed assertion
-/// in Fast DDS does) instead of reporting ready while the file PATH does not exist, and create it:
-/// the first start of NAME dies during discovery.
-inline constexpr const char* kTestAbortOnceEnv = "MAPTR_TEST_ABORT_ONCE";
+/// Decides, just before a process publishes its NodeReady, whether it does (true) or withholds
+/// it (false); it may also end the process. Without one every process announces. A seam for
+/// the tests' hooked binaries (tests/hooks), whose first start of a process hangs or dies in
+/// discovery; the product installs none.
+using ReadyGate = bool (*)(const std::string& name);
+void set_ready_gate(ReadyGate gate);
 
-/// Publishes this process's NodeReady (once every needed endpoint is matched), unless the
-/// MAPTR_TEST_SILENT_ONCE hook withholds it or the MAPTR_TEST_ABORT_ONCE hook aborts instead.
+/// Publishes this process's NodeReady (once every needed endpoint is matched), unless the ready
+/// gate withholds it.
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind);
 
 /// Follows the plant's liveliness on a reader of its ticks. The plant counts as lost once a

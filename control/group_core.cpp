@@ -15,11 +15,10 @@ constexpr double kTimeSlackS = 1e-9;
 int count(const std::vector<uint8_t>& m) { return static_cast<int>(std::count(m.begin(), m.end(), 1)); }
 }  // namespace
 
-GroupCore::GroupCore(int side, const GroupConfig& config, std::string ledger_path, Level2Runner* runner)
+GroupCore::GroupCore(int side, const GroupConfig& config, std::optional<Ledger> resume, Level2Runner* runner)
     : side_(side),
       c_(config),
-      ledger_path_(std::move(ledger_path)),
-      ledger_(config.robot.per_side()),
+      ledger_(resume ? std::move(*resume) : Ledger(config.robot.per_side())),
       own_runner_(runner ? nullptr : std::make_unique<InlineLevel2Runner>(config.oracle)),
       runner_(runner ? runner : own_runner_.get()),
       defer_ticks_(std::llround(config.level2_defer_s / config.dt_s)) {
@@ -30,11 +29,7 @@ GroupCore::GroupCore(int side, const GroupConfig& config, std::string ledger_pat
     dc.dt_s = config.dt_s;
     diagnosis_.emplace(config.robot.per_side(), dc);
   }
-  if (!ledger_path_.empty()) resumed_ = ledger_.load(ledger_path_, config.robot.per_side());
-}
-
-void GroupCore::save() const {
-  if (!ledger_path_.empty()) ledger_.save(ledger_path_);
+  resumed_ = resume.has_value();
 }
 
 bool GroupCore::update_cruise(const GroupInput& in) {
@@ -161,7 +156,7 @@ GroupDecision GroupCore::step(const GroupInput& measured_in) {
   last_ = d;
   d.diagnosed = std::move(diagnosed);
   const long long period_ticks = std::max(1LL, std::llround(c_.level2_period_s / c_.dt_s));
-  if (changed || in.tick % period_ticks == 0) save();
+  d.ledger_due = changed || in.tick % period_ticks == 0;
   return d;
 }
 

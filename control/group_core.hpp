@@ -14,9 +14,10 @@
 // Fault detection (control/diagnosis.hpp), when the tick carries the drive's measurements: an
 // agent flagged faulty counts as not live (Level 2 counts one fewer, Level 3 never assigns it)
 // until its probation is over; GroupDecision::faulty announces it (the plant disconnects it).
-// The ledger is saved (if a path is given) on every change of the assignment and once per
-// Level-2 period, and loaded at construction: a restarted controller resumes it.
-// Pure: explicit time (GroupInput::t), no DDS, no clock (except the solver's diagnostic timing).
+// The ledger is due to be kept (GroupDecision::ledger_due) on every change of the assignment and
+// once per Level-2 period; a restarted controller is constructed with the one kept.
+// Pure: explicit time (GroupInput::t), no DDS, no file, no clock (except the solver's diagnostic
+// timing).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -79,18 +80,21 @@ struct GroupDecision {
   uint64_t decisions = 0, reallocations = 0;
   std::vector<uint8_t> faulty;              ///< per agent: 0, or the Diagnosis it is isolated for
   std::vector<DiagnosisChange> diagnosed;   ///< flags raised or lowered at this tick
+  /// The ledger is due to be kept (the node saves it): the assignment changed, or a Level-2
+  /// period ended.
+  bool ledger_due = false;
 };
 
 class GroupCore {
  public:
-  /// side 0 = left, 1 = right; ledger_path "" keeps the ledger in memory only. runner solves
-  /// the Level-2 decisions (nullptr: an InlineLevel2Runner of the core's own); it must outlive
-  /// the core.
-  GroupCore(int side, const GroupConfig& config, std::string ledger_path, Level2Runner* runner = nullptr);
+  /// side 0 = left, 1 = right; `resume`: the ledger a restarted controller goes on from (its
+  /// size must be the side's agents), none for a fresh one. runner solves the Level-2 decisions
+  /// (nullptr: an InlineLevel2Runner of the core's own); it must outlive the core.
+  GroupCore(int side, const GroupConfig& config, std::optional<Ledger> resume = std::nullopt,
+            Level2Runner* runner = nullptr);
   GroupDecision step(const GroupInput& in);
   const Ledger& ledger() const { return ledger_; }
   bool resumed() const { return resumed_; }
-  void save() const;
 
  private:
   bool update_cruise(const GroupInput& in);
@@ -110,7 +114,6 @@ class GroupCore {
 
   int side_;
   GroupConfig c_;
-  std::string ledger_path_;
   Ledger ledger_;
   std::unique_ptr<Level2Runner> own_runner_;
   Level2Runner* runner_;

@@ -7,6 +7,7 @@
 #include "comm/follower.hpp"
 #include "comm/side.hpp"
 #include "config/scenario.hpp"
+#include "records/ledger_file.hpp"
 #include "records/level2_log.hpp"
 
 namespace maptr::group {
@@ -93,35 +94,27 @@ records::Level2Record level2_record(const control::GroupDecision& d) {
 }
 }  // namespace
 
-std::chrono::milliseconds test_level2_delay() {
-  const char* v = std::getenv(kTestLevel2DelayEnv);
-  if (v == nullptr || *v == '\0') return std::chrono::milliseconds(0);
-  const std::string text(v);
-  std::size_t used = 0;
-  long ms = -1;
-  try {
-    ms = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || ms < 0 || ms > kMaxTestLevel2DelayMs)
-    throw std::invalid_argument(std::string(kTestLevel2DelayEnv) + " = " + text.substr(0, 80) +
-                                ": must be an integer from 0 to " + std::to_string(kMaxTestLevel2DelayMs) +
-                                " (ms)");
-  return std::chrono::milliseconds(ms);
-}
+namespace {
+std::chrono::milliseconds level2_pause{0};
+}  // namespace
+
+void set_level2_pause(std::chrono::milliseconds pause) { level2_pause = pause; }
 
 GroupNode::GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<spdlog::logger> log)
     : args_(args),
       side_(side),
       log_(std::move(log)),
-      worker_(args.scenario.control.oracle, test_level2_delay()),
-      core_(side, make_config(args.scenario), args.run_dir + "/ledger-" + (side == 0 ? "L" : "R") + ".json",
-            &worker_) {}
+      ledger_path_(records::ledger_path(args.run_dir, side)),
+      worker_(args.scenario.control.oracle, level2_pause),
+      core_(side, make_config(args.scenario),
+            records::load_ledger(ledger_path_, args.scenario.robot.per_side()), &worker_) {}
 
 int GroupNode::run() {
   comm::TickFollower follower(args_, msg::NODE_GROUP, log_);
   follower.answer_writer<msg::GroupStatusPubSubType>(comm::topic::kGroup);
+  if (level2_pause.count() > 0)
+    log_->info("every Level-2 solve is followed by a {} ms pause (a slow solver, set_level2_pause)",
+               level2_pause.count());
   if (core_.resumed())
     log_->info("resumed the wear ledger: {} decisions, {} reallocations so far", core_.ledger().decisions,
                core_.ledger().reallocations);
@@ -132,6 +125,7 @@ int GroupNode::run() {
   const int code = follower.run([&](const msg::PlantTick& t) {
     const control::GroupInput in = group_input(t, side_);
     const control::GroupDecision d = core_.step(in);
+    if (d.ledger_due) records::save_ledger(ledger_path_, core_.ledger());
     if (d.level2_ran && (d.level2_status == control::kL2Infeasible) != infeasible) {
       infeasible = !infeasible;
       if (infeasible)
@@ -169,7 +163,7 @@ int GroupNode::run() {
     st.rejected(follower.rejected());
     follower.answer(st);
   });
-  core_.save();
+  records::save_ledger(ledger_path_, core_.ledger());
   log_->info(
       "Level 2: {} decisions solved on the worker thread, {} of them waited for at the tick they were due",
       worker_.finished(), worker_.waited());

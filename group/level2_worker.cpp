@@ -2,8 +2,8 @@
 
 namespace maptr::group {
 
-Level2Worker::Level2Worker(bool oracle, std::chrono::milliseconds test_delay)
-    : oracle_(oracle), test_delay_(test_delay), thread_([this] { loop(); }) {}
+Level2Worker::Level2Worker(bool oracle, std::chrono::milliseconds pause)
+    : oracle_(oracle), pause_(pause), thread_([this] { loop(); }) {}
 
 Level2Worker::~Level2Worker() {
   {
@@ -42,7 +42,7 @@ void Level2Worker::loop() {
     const control::Level2Problem p = problem_;
     lock.unlock();
     control::Level2Outcome o = control::solve_level2(solver_, p, oracle_);
-    if (test_delay_.count() > 0) std::this_thread::sleep_for(test_delay_);
+    if (pause_.count() > 0) std::this_thread::sleep_for(pause_);
     lock.lock();
     outcome_ = o;
     done_ = true;

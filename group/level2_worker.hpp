@@ -2,8 +2,8 @@
 // The group's worker thread for Level 2: start() hands it the problem of tick k and returns at
 // once; finish() at tick k + d returns the outcome, waiting only if the solve is still running
 // (then the tick waits, and the run stays deterministic). One solver, used only by the worker.
-// test_delay adds a pause after each solve: a slow solver for tests (test-only; the group
-// node reads it from MAPTR_TEST_LEVEL2_DELAY_MS).
+// `pause` adds a wait after each solve: a slow solver for tests (set_level2_pause in
+// group_node.hpp; zero in the product).
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -16,7 +16,7 @@ namespace maptr::group {
 
 class Level2Worker : public control::Level2Runner {
  public:
-  Level2Worker(bool oracle, std::chrono::milliseconds test_delay);
+  Level2Worker(bool oracle, std::chrono::milliseconds pause);
   ~Level2Worker() override;
   Level2Worker(const Level2Worker&) = delete;
   Level2Worker& operator=(const Level2Worker&) = delete;
@@ -32,7 +32,7 @@ class Level2Worker : public control::Level2Runner {
   void loop();
 
   const bool oracle_;
-  const std::chrono::milliseconds test_delay_;
+  const std::chrono::milliseconds pause_;
   control::Level2Solver solver_;  // the worker's only
   std::mutex mutex_;
   std::condition_variable cv_;

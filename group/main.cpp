@@ -25,12 +25,6 @@ int main(int argc, char** argv) {
       maptr::comm::parse_process_args(static_cast<int>(args.size()), args.data(), "MAPTR group controller");
   auto log = maptr::comm::make_logger(pa);
   try {
-    maptr::group::test_level2_delay();  // a bad value is refused before anything starts
-  } catch (const std::exception& e) {
-    log->critical("{}", e.what());
-    return 2;
-  }
-  try {
     return maptr::group::GroupNode(pa, side == "L" ? 0 : 1, log).run();
   } catch (const std::exception& e) {
     log->critical("{}", e.what());

@@ -102,6 +102,15 @@ class Recorder::Tap : public dds::DataReaderListener {
   int deaf_id_ = -1;
 };
 
+namespace {
+std::string& hidden_agent() {
+  static std::string name;
+  return name;
+}
+}  // namespace
+
+void hide_first_answer_writer_of(const std::string& name) { hidden_agent() = name; }
+
 Recorder::Recorder(const comm::DdsOptions& o, const std::string& path, Scope scope, int agents,
                    const std::string& compression)
     : topics_(recorded_topics(scope)), fleet_id_(o.fleet_id), agents_(agents) {
@@ -119,11 +128,8 @@ Recorder::Recorder(const comm::DdsOptions& o, const std::string& path, Scope sco
   for (std::size_t i = 0; i < topics_.size(); ++i) {
     const auto& t = topics_[i];
     taps_.push_back(std::make_unique<Tap>(*this, static_cast<uint16_t>(i)));
-    // Test hook: MAPTR_TEST_RECORDER_DEAF_TO=NAME hides the first start of agent NAME's answer
-    // writer from the recorder's match count (the launcher then starts NAME again).
-    const char* deaf = std::getenv(kTestRecorderDeafEnv);
-    if (deaf && *deaf && t.topic == std::string(comm::topic::kAgentReply) && o.fleet_id != 0)
-      taps_.back()->deaf_to(o.fleet_id, comm::base_participant_id(deaf, agents));
+    if (!hidden_agent().empty() && t.topic == std::string(comm::topic::kAgentReply) && o.fleet_id != 0)
+      taps_.back()->deaf_to(o.fleet_id, comm::base_participant_id(hidden_agent(), agents));
     auto* topic = participant_->topic(t.topic, new comm::RawType(t.type_name, t.max_size));
     participant_->reader(topic, t.profile, taps_.back().get(), recorder_depth(agents));
   }

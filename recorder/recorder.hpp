@@ -51,9 +51,11 @@ inline constexpr const char* kWriterKey = "writer";
 inline constexpr const char* kProcessKey = "process";
 inline constexpr const char* kVerdictKey = "verdict";
 
-/// For tests only: the environment variable that hides an agent's first answer writer from the
-/// recorder's match count (recorder.cpp).
-inline constexpr const char* kTestRecorderDeafEnv = "MAPTR_TEST_RECORDER_DEAF_TO";
+/// Makes the recorders this process creates from now on blind to the answer writer of agent
+/// `name`'s first start ("" for none): they neither record nor count it, as if discovery had
+/// failed on the recorder's side only. A seam for the tests' hooked launcher (tests/hooks); the
+/// product sets none.
+void hide_first_answer_writer_of(const std::string& name);
 
 class Recorder {
  public:

@@ -5,9 +5,8 @@
 // a restarted group controller resumes where it stopped. Over a tick of dt [s] in which the
 // side's wheels moved |phidot| r dt [m]:
 //   active agent:  D_j += |phidot| r dt,  t_j += dt;     inactive agent:  t_j = 0.
-// Stored as JSON; saved atomically (write a temporary file, then rename).
+// Its file is records/ledger_file.hpp's.
 #include <cstdint>
-#include <string>
 #include <vector>
 
 namespace maptr::control {
@@ -25,18 +24,13 @@ struct Ledger {
   uint64_t decisions = 0, reallocations = 0;
 
   /// An empty ledger for per_side agents: no wear, nobody active.
-  explicit Ledger(int per_side = 0);
+  explicit Ledger(int per_side = 0)
+      : wear_m(per_side, 0.0), active_time_s(per_side, 0.0), assignment(per_side, 0) {}
 
   /// The agents marked in `active` each drove distance_m [m] over dt_s [s]; every other
   /// agent's continuous active time restarts at 0. `active` may be shorter than the ledger
   /// (missing entries count as inactive).
   void accrue(const std::vector<uint8_t>& active, double distance_m, double dt_s);
-
-  /// Reads the file; false if it does not exist. Throws std::runtime_error on a corrupt file
-  /// or one written for a different number of agents per side.
-  bool load(const std::string& path, int per_side);
-  /// Writes the file atomically; throws std::runtime_error if it cannot be written.
-  void save(const std::string& path) const;
 };
 
 }  // namespace maptr::control

@@ -19,6 +19,7 @@
 #include "comm/shm_files.hpp"
 #include "config/scenario.hpp"
 #include "deploy/cli/paths.hpp"
+#include "deploy/cli/soak_leftovers.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/launcher.hpp"
 #include "deploy/fleet/shm_segments.hpp"
@@ -33,18 +34,12 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2;
-/// Wall time a fleet's processes get to be gone after its launcher ended, s.
-constexpr double kLeftoverGraceS = 3.0;
 constexpr std::chrono::milliseconds kPoll{100};
 /// Wall time a launcher gets to end its fleet after SIGTERM before it is killed, s (its own end
 /// of a fleet takes at most about 25 s).
 constexpr double kLauncherEndGraceS = 60.0;
 /// Period of the samples of the shared-memory segments the fleet's processes map, s.
 constexpr double kSegmentSampleS = 0.5;
-constexpr const char* kShmDir = "/dev/shm";
-/// Ports of one DDS domain (the RTPS domain gain): a fleet of up to about 120 participant ids,
-/// restarts included, stays within them.
-constexpr int kDomainPorts = 250;
 
 std::atomic<bool> g_interrupted{false};
 void on_interrupt(int) { g_interrupted.store(true); }
@@ -61,19 +56,6 @@ struct FleetRun {
   double wall_s = 0.0;
   nlohmann::json summary = nlohmann::json::object();
 };
-
-std::vector<pid_t> fleet_processes(const std::string& fleet_id);
-
-/// Adds the shared-memory segments mapped by the launcher `launcher` and by the processes of
-/// the fleet it runs in `dir` (from its fleet.json) to `out`.
-void sample_segments(pid_t launcher, const std::string& dir, std::set<std::string>& out) {
-  std::vector<pid_t> pids = {launcher};
-  const nlohmann::json fleet = fleet::read_json_object(dir + "/fleet.json");
-  if (fleet.contains("fleet_id"))
-    for (pid_t p : fleet_processes(std::to_string(fleet.value("fleet_id", 0LL)))) pids.push_back(p);
-  for (pid_t p : pids)
-    for (const auto& s : fleet::segments_mapped_by(p)) out.insert(s);
-}
 
 /// Runs `maptr run yaml --out dir --domain d --quiet` (output to dir.log) and waits for it.
 FleetRun run_fleet(const std::string& bin, const std::string& yaml, const std::string& dir, int domain,
@@ -118,90 +100,6 @@ FleetRun run_fleet(const std::string& bin, const std::string& yaml, const std::s
   r.exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
   r.summary = fleet::read_json_object(dir + "/summary.json");
   return r;
-}
-
-/// PIDs of the running processes whose environment carries MAPTR_FLEET_ID=fleet_id.
-std::vector<pid_t> fleet_processes(const std::string& fleet_id) {
-  const std::string needle = "MAPTR_FLEET_ID=" + fleet_id;
-  std::vector<pid_t> out;
-  for (const auto& e : fs::directory_iterator("/proc")) {
-    const std::string name = e.path().filename();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream in(e.path() / "environ", std::ios::binary);
-    std::string env((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    for (std::size_t p = 0; (p = env.find(needle, p)) != std::string::npos; p += needle.size())
-      if ((p == 0 || env[p - 1] == '\0') &&
-          (p + needle.size() == env.size() || env[p + needle.size()] == '\0'))
-        out.push_back(static_cast<pid_t>(std::stol(name)));
-  }
-  return out;
-}
-
-/// Processes of the fleet still there after a grace period ("" when none); they are killed.
-std::string check_leftovers(const std::string& run_dir) {
-  const nlohmann::json fleet = fleet::read_json_object(run_dir + "/fleet.json");
-  if (!fleet.contains("fleet_id")) return "";  // the fleet never started
-  const std::string id = std::to_string(fleet.value("fleet_id", 0LL));
-  const auto t0 = Clock::now();
-  std::vector<pid_t> left = fleet_processes(id);
-  while (!left.empty() && since(t0) < kLeftoverGraceS) {
-    std::this_thread::sleep_for(kPoll);
-    left = fleet_processes(id);
-  }
-  if (left.empty()) return "";
-  std::string pids;
-  for (pid_t p : left) {
-    pids += " " + std::to_string(p);
-    kill(p, SIGKILL);
-  }
-  // Gone for good before the shared-memory checks (a dead owner's locks are free).
-  for (const auto t1 = Clock::now(); !fleet_processes(id).empty() && since(t1) < kLeftoverGraceS;)
-    std::this_thread::sleep_for(kPoll);
-  return std::to_string(left.size()) + " process(es) of the fleet left:" + pids;
-}
-
-/// Fast DDS port files in /dev/shm in the soak's domain's own port range. (Segments carry no
-/// domain: other fleets on the machine make and leave them too; see check_segments.)
-struct ShmCount {
-  int ports = 0;
-};
-
-ShmCount count_shm(int domain) {
-  ShmCount c;
-  const int base = comm::rtps_domain_port_base(domain);
-  for (const auto& e : fs::directory_iterator(kShmDir)) {
-    const std::string n = e.path().filename();
-    const std::string port = n.rfind("sem.", 0) == 0 ? n.substr(4) : n;
-    if (port.rfind("fastrtps_port", 0) == 0) {
-      const int p = std::atoi(port.c_str() + 13);
-      if (p >= base && p < base + kDomainPorts) ++c.ports;
-    }
-  }
-  return c;
-}
-
-std::string check_shm(const ShmCount& before, const ShmCount& after) {
-  if (after.ports <= before.ports) return "";
-  return "/dev/shm grew: domain port files " + std::to_string(before.ports) + " -> " +
-         std::to_string(after.ports);
-}
-
-/// The segments the fleet's processes mapped that are still in /dev/shm without an owner ("" when
-/// none); they are removed, so that the next fleet starts clean.
-std::string check_segments(const std::set<std::string>& own) {
-  std::vector<std::string> left;
-  for (const auto& s : own)
-    if (fleet::segment_orphaned(kShmDir, s)) left.push_back(s);
-  if (left.empty()) return "";
-  std::string names;
-  for (const auto& s : left) {
-    names += " " + s;
-    std::error_code ec;
-    fs::remove(fs::path(kShmDir) / s, ec);
-    fs::remove(fs::path(kShmDir) / (s + "_el"), ec);
-  }
-  return std::to_string(left.size()) +
-         " shared-memory segment(s) of the fleet left without owner (removed):" + names;
 }
 
 /// The soak's scenario with `faults`, written where its fleet's `maptr run` reads it.

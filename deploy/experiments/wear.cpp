@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "deploy/experiments/experiment_list.hpp"
+#include "records/ledger_file.hpp"
 
 namespace maptr::deploy {
 
@@ -61,21 +62,18 @@ void add_idle(json& row, const Run& r, double t_on) {
 
 /// The wear of every agent of a side from its group controller's ledger (empty when absent).
 std::vector<double> ledger_wear(const std::string& path) {
-  std::ifstream in(path);
-  json led;
   try {
-    if (in) in >> led;
-  } catch (...) {
+    const auto ledger = records::load_ledger(path);
+    return ledger ? ledger->wear_m : std::vector<double>{};
+  } catch (const std::exception&) {
     return {};
   }
-  if (!led.is_object() || !led.contains("wear_m")) return {};
-  return led["wear_m"].get<std::vector<double>>();
 }
 
 void add_wear(json& row, const Run& r) {
   double wmin = 1e300, wmax = -1e300;
   for (int side = 0; side < 2; ++side) {
-    const auto w = ledger_wear(r.dir + "/ledger-" + std::string(side ? "R" : "L") + ".json");
+    const auto w = ledger_wear(records::ledger_path(r.dir, side));
     if (w.empty()) continue;
     const auto [lo, hi] = std::minmax_element(w.begin(), w.end());
     row[side ? "wear_spread_R_m" : "wear_spread_L_m"] = *hi - *lo;

@@ -1,10 +1,10 @@
 #include "deploy/fleet/soak.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "deploy/fleet/fault_schedule.hpp"
+#include "records/ledger_file.hpp"
 
 namespace maptr::deploy::soak {
 
@@ -73,18 +73,17 @@ std::vector<std::string> check_wear(const nlohmann::json& summary, const std::st
       out.push_back("group-" + side + ": the wear ledger went backwards " +
                     std::to_string(seen.value("regressions", 0)) + " times (largest drop " +
                     std::to_string(seen.value("largest_drop_m", 0.0)) + " m)");
-    const std::string path = run_dir + "/ledger-" + side + ".json";
-    nlohmann::json file;
+    const std::string path = records::ledger_path(run_dir, side == "L" ? 0 : 1);
+    std::vector<double> kept;
     try {
-      std::ifstream in(path);
-      if (!in) throw std::runtime_error("missing");
-      in >> file;
+      const auto file = records::load_ledger(path);
+      if (!file) throw std::runtime_error("missing");
+      kept = file->wear_m;
     } catch (const std::exception& e) {
       out.push_back("group-" + side + ": ledger " + path + " lost (" + e.what() + ")");
       continue;
     }
     const auto last = seen.value("wear_m", std::vector<double>{});
-    const auto kept = file.value("wear_m", std::vector<double>{});
     if (static_cast<int>(kept.size()) != per_side) {
       out.push_back("group-" + side + ": ledger has " + std::to_string(kept.size()) + " agents, not " +
                     std::to_string(per_side));

@@ -87,6 +87,35 @@ enum class Privilege {
   kNoRealtime,
 };
 
+/// The folder whose `maptr` the runners start: the product's (MAPTR_BIN_DIR) unless a
+/// HookedBinaries is in scope.
+inline std::string& cli_bin_dir() {
+  static std::string dir = MAPTR_BIN_DIR;
+  return dir;
+}
+
+#ifdef MAPTR_HOOKED_BIN_DIR
+/// While in scope, the runners start the tests' hooked binaries (tests/hooks: the product's
+/// code with the MAPTR_TEST_* hooks of tests/hooks/hooks.hpp) with `name`=`value` in their
+/// environment.
+class HookedBinaries {
+ public:
+  HookedBinaries(const char* name, const std::string& value) : name_(name) {
+    setenv(name, value.c_str(), 1);
+    cli_bin_dir() = MAPTR_HOOKED_BIN_DIR;
+  }
+  ~HookedBinaries() {
+    unsetenv(name_);
+    cli_bin_dir() = MAPTR_BIN_DIR;
+  }
+  HookedBinaries(const HookedBinaries&) = delete;
+  HookedBinaries& operator=(const HookedBinaries&) = delete;
+
+ private:
+  const char* name_;
+};
+#endif
+
 /// Starts `maptr ARGS` in the background (output to OUT_LOG); returns its PID.
 inline pid_t start_cli(std::vector<std::string> args, const std::string& out_log,
                        Privilege privilege = Privilege::kAsIs) {
@@ -101,7 +130,7 @@ inline pid_t start_cli(std::vector<std::string> args, const std::string& out_log
     dup2(fd, 1);
     dup2(fd, 2);
     std::vector<char*> argv;
-    std::string bin = std::string(MAPTR_BIN_DIR) + "/maptr";
+    std::string bin = cli_bin_dir() + "/maptr";
     argv.push_back(bin.data());
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

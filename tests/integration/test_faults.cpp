@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "records/trace.hpp"
+#include "tests/hooks/hooks.hpp"
 #include "tests/integration/fleet_runner.hpp"
 
 using namespace maptr::testing;
@@ -340,10 +341,8 @@ namespace {
 /// its NodeReady (and creates `marker`), so the launcher has to start it again.
 CliResult run_silencing_once(const std::string& name, const std::string& marker, const std::string& out,
                              const std::vector<std::string>& extra) {
-  setenv("MAPTR_TEST_SILENT_ONCE", (name + ":" + marker).c_str(), 1);
-  auto r = run_cli(run_args(out, extra), out, 300);
-  unsetenv("MAPTR_TEST_SILENT_ONCE");
-  return r;
+  const maptr::testing::HookedBinaries hook(maptr::test_hooks::kSilentOnceEnv, name + ":" + marker);
+  return run_cli(run_args(out, extra), out, 300);
 }
 
 }  // namespace
@@ -391,9 +390,10 @@ TEST(Faults, AProcessThatAbortsDuringDiscoveryIsStartedAgain) {
   // launcher starts it again, as it does one that never gets ready, and the run goes on.
   TempDir tmp;
   const std::string out = tmp.path() + "/run", marker = tmp.path() + "/L2-aborted";
-  setenv("MAPTR_TEST_ABORT_ONCE", ("L2:" + marker).c_str(), 1);
-  auto r = run_cli(run_args(out, {"--duration", "2"}), out, 300);
-  unsetenv("MAPTR_TEST_ABORT_ONCE");
+  const auto r = [&] {
+    const maptr::testing::HookedBinaries hook(maptr::test_hooks::kAbortOnceEnv, "L2:" + marker);
+    return run_cli(run_args(out, {"--duration", "2"}), out, 300);
+  }();
   ASSERT_FALSE(r.timed_out) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.summary["status"], "ok");

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "records/level2_log.hpp"
+#include "tests/hooks/hooks.hpp"
 #include "tests/integration/fleet_runner.hpp"
 
 using maptr::testing::run_args;
@@ -16,9 +17,6 @@ using maptr::testing::write_file;
 
 namespace {
 
-/// Test-only pause after each Level-2 solve, read by the group processes (group/group_node.hpp).
-constexpr const char* kDelayEnv = "MAPTR_TEST_LEVEL2_DELAY_MS";
-
 /// An EC run whose load changes: 10 m/s, 5 m/s, then 8 m/s (Level 2 changes its count).
 constexpr const char* kChangingLoad =
     "name: l2-changes\nagents: 16\nmode: ec\nduration_s: 24\n"
@@ -27,13 +25,16 @@ constexpr const char* kChangingLoad =
     "    - {type: straight, speed_mps: 5, duration_s: 8}\n"
     "    - {type: straight, speed_mps: 8, duration_s: 8}\n";
 
-/// Runs `maptr run ARGS` (with the test delay if delay_ms is not empty); returns trace_sha256.
+/// Runs `maptr run ARGS` (the product's binaries, or with delay_ms not empty the hooked ones
+/// whose Level-2 solves take that much longer); returns trace_sha256.
 std::string run_sha(const TempDir& tmp, const std::string& name, std::vector<std::string> args,
                     const std::string& delay_ms = "") {
   const std::string out = tmp.path() + "/" + name;
-  if (!delay_ms.empty()) setenv(kDelayEnv, delay_ms.c_str(), 1);
-  const auto r = run_cli(run_args(out, std::move(args)), out, 300);
-  unsetenv(kDelayEnv);
+  const auto r = [&] {
+    if (delay_ms.empty()) return run_cli(run_args(out, std::move(args)), out, 300);
+    const maptr::testing::HookedBinaries hook(maptr::test_hooks::kLevel2DelayEnv, delay_ms);
+    return run_cli(run_args(out, std::move(args)), out, 300);
+  }();
   EXPECT_FALSE(r.timed_out) << r.output;
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.summary.value("status", ""), "ok") << r.summary.dump();
@@ -58,6 +59,10 @@ TEST(Level2Defer, ASlowSolveGivesTheSameTrace) {
   EXPECT_EQ(fast.size(), 64u);
   EXPECT_EQ(fast, slow);
   EXPECT_GE(applied_counts(tmp.path() + "/slow").size(), 4u);  // Level 2 did decide
+  for (const char* side : {"L", "R"}) {  // and the hooked groups did pause after each solve
+    const std::string log = maptr::testing::read_text(tmp.path() + "/slow/logs/group-" + side + ".log");
+    EXPECT_NE(log.find("followed by a 30 ms pause"), std::string::npos) << log;
+  }
 }
 
 TEST(Level2Defer, ChangingDecisionsRunTwiceAndWithASlowSolveGiveOneTrace) {

@@ -15,11 +15,12 @@
 #include "comm/dds.hpp"
 #include "comm/lockstep.hpp"
 #include "comm/raw_type.hpp"
-#include "fleet_runner.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "recorder/recorder.hpp"
 #include "records/mcap.hpp"
 #include "records/trace.hpp"
+#include "tests/hooks/hooks.hpp"
+#include "tests/integration/fleet_runner.hpp"
 
 using namespace maptr;
 using maptr::testing::CliResult;
@@ -232,10 +233,11 @@ TEST(Record, AnAgentWhoseWriterTheRecorderNeverMatchesIsStartedAgainAndRecorded)
   // starts L1 again after the rematch interval, and run.mcap holds its answers.
   TempDir tmp;
   const std::string out = tmp.path() + "/deaf";
-  setenv("MAPTR_TEST_RECORDER_DEAF_TO", "L1", 1);
-  const auto r =
-      maptr::testing::run_cli(maptr::testing::run_args(out, {"--agents", "8", "--duration", "2"}), out, 300);
-  unsetenv("MAPTR_TEST_RECORDER_DEAF_TO");
+  const auto r = [&] {
+    const maptr::testing::HookedBinaries hook(maptr::test_hooks::kRecorderDeafEnv, "L1");
+    return maptr::testing::run_cli(maptr::testing::run_args(out, {"--agents", "8", "--duration", "2"}), out,
+                                   300);
+  }();
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.summary.value("status", ""), "ok");
   const auto rematched = r.summary.value("discovery_rematched", nlohmann::json::array());

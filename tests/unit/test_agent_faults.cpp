@@ -226,7 +226,7 @@ TEST(GroupCore, AFlaggedAgentIsNeitherCountedNorAssignedAndIsAnnounced) {
   control::GroupConfig c;
   c.mode = control::GroupMode::kAll;
   c.robot.agents = 8;
-  control::GroupCore core(0, c, "");
+  control::GroupCore core(0, c);
   control::GroupInput in;
   in.live.assign(4, 1);
   in.active.assign(4, 1);
@@ -249,7 +249,7 @@ TEST(GroupCore, WithoutMeasurementsNothingIsFlagged) {
   control::GroupConfig c;
   c.mode = control::GroupMode::kAll;
   c.robot.agents = 8;
-  control::GroupCore core(0, c, "");
+  control::GroupCore core(0, c);
   control::GroupInput in;
   in.live.assign(4, 1);
   in.active.assign(4, 1);

@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "deploy/fleet/soak.hpp"
+#include "records/ledger_file.hpp"
 
 namespace {
 
@@ -27,8 +27,11 @@ struct SoakWear : ::testing::Test {
     std::filesystem::create_directories(dir);
   }
   void TearDown() override { std::filesystem::remove_all(dir); }
+  /// The group of `side` kept a ledger with this wear (records/ledger_file.hpp).
   void ledger(const std::string& side, const std::vector<double>& wear) {
-    std::ofstream(dir + "/ledger-" + side + ".json") << json({{"wear_m", wear}}).dump();
+    maptr::control::Ledger l(static_cast<int>(wear.size()));
+    l.wear_m = wear;
+    maptr::records::save_ledger(maptr::records::ledger_path(dir, side == "L" ? 0 : 1), l);
   }
 };
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "control/group_core.hpp"
+#include "records/ledger_file.hpp"
 
 namespace {
 
@@ -33,10 +34,14 @@ GroupConfig ec() {
 struct Side {
   GroupCore core;
   GroupInput in;
+  std::string path;
 
+  /// ledger_path: where the ledger is kept when it is due, and resumed from ("" for none).
   explicit Side(const GroupConfig& c, const std::string& ledger_path = "",
                 maptr::control::Level2Runner* runner = nullptr)
-      : core(0, c, ledger_path, runner) {
+      : core(0, c, ledger_path.empty() ? std::nullopt : maptr::records::load_ledger(ledger_path, kPerSide),
+             runner),
+        path(ledger_path) {
     in.live.assign(kPerSide, 1);
     in.active.assign(kPerSide, 0);
     in.battery_V = 23.4;
@@ -49,6 +54,7 @@ struct Side {
     in.phidot_side = v / r;
     in.phidot_ref_L = in.phidot_ref_R = ref / r;
     const GroupDecision d = core.step(in);
+    if (d.ledger_due && !path.empty()) maptr::records::save_ledger(path, core.ledger());
     in.active = d.active;
     ++in.tick;
     return d;
