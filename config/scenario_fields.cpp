@@ -161,7 +161,7 @@ Table<S> robot_fields() {
   };
 }
 
-/// control.* and trajectory.accel_mps2.
+/// control.*: the wheel PID, Levels 2 and 3, the agents' safe behaviour and the path follower.
 Table<S> control_fields() {
   return {
       real<S>(
@@ -217,6 +217,12 @@ Table<S> control_fields() {
           above(0, 1e6), "m",
           "a run whose cross-track error exceeds this after its first second ends degraded "
           "(path not followed)"),
+  };
+}
+
+/// control.fault_* (fault detection) and trajectory.accel_mps2, in to_yaml()'s order.
+Table<S> fault_detection_fields() {
+  return {
       flag<S>(
           "control.fault_detection", [](auto& s) -> auto& { return s.control.fault_detection; },
           "the plant publishes what each wheel's drive measures and the groups isolate the agents whose "
@@ -228,7 +234,8 @@ Table<S> control_fields() {
           "than this is a residual"),
       real<S>(
           "control.fault_jitter_V", [](auto& s) -> auto& { return s.control.fault_jitter_V; }, above(0, 1e3),
-          "V", "an agent's voltage steps apart from its side's median step, their median over the persistence "
+          "V",
+          "an agent's voltage steps apart from its side's median step, their median over the persistence "
           "time beyond this is a residual (erratic voltages)"),
       real<S>(
           "control.fault_persistence_s", [](auto& s) -> auto& { return s.control.fault_persistence_s; },
@@ -247,7 +254,8 @@ Table<S> control_fields() {
 const Table<Scenario>& scenario_table() {
   static const Table<S> t = [] {
     Table<S> v = run_fields();
-    for (auto part : {robot_fields(), control_fields()}) v.insert(v.end(), part.begin(), part.end());
+    for (auto part : {robot_fields(), control_fields(), fault_detection_fields()})
+      v.insert(v.end(), part.begin(), part.end());
     return v;
   }();
   return t;

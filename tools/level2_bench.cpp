@@ -96,6 +96,21 @@ bool parse_args(int argc, char** argv, Args& a) {
   return true;
 }
 
+/// Decision i of family f: 16 agents, the side alternating, the speed wandering by `wander`.
+Level2Problem problem(const Family& f, int i, double wander) {
+  Level2Problem p;
+  p.robot.agents = 16;
+  p.robot.gross_mass_kg = f.mass_kg;
+  p.side = i % 2;
+  p.live = p.robot.per_side();
+  p.n_other = 0.0;
+  p.phidot_ref_L = p.phidot_ref_R = f.speed_mps / p.robot.wheel_radius_m;
+  p.v_x = f.speed_mps * (1.0 + wander * std::sin(0.7 * i));
+  p.battery_V = f.battery_V;
+  p.validate();
+  return p;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -117,16 +132,7 @@ int main(int argc, char** argv) {
     Level2Solver solver(config);
     std::vector<double> times, cpu;
     for (int i = 0; i < decisions; ++i) {
-      Level2Problem p;
-      p.robot.agents = 16;
-      p.robot.gross_mass_kg = f.mass_kg;
-      p.side = i % 2;
-      p.live = p.robot.per_side();
-      p.n_other = 0.0;
-      p.phidot_ref_L = p.phidot_ref_R = f.speed_mps / p.robot.wheel_radius_m;
-      p.v_x = f.speed_mps * (1.0 + wander * std::sin(0.7 * i));
-      p.battery_V = f.battery_V;
-      p.validate();
+      const Level2Problem p = problem(f, i, wander);
       const double c0 = thread_cpu_ms();
       const auto r = solver.solve(p);
       cpu.push_back(thread_cpu_ms() - c0);

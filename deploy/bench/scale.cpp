@@ -141,6 +141,18 @@ double bridge_bytes_per_tick(const records::Summary& sum) {
   return ticks > 0 ? sent / ticks : 0.0;
 }
 
+/// The memory columns of a row: an agent's PSS (median, largest) and the fleet's, kB and MB.
+json memory_json(const FleetMemory& mem) {
+  const long pss_max =
+      mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
+  return {{"pss_agent_median_kB", median(mem.agent_pss_kB)},
+          {"pss_agent_median_MB", median(mem.agent_pss_kB) / kKiB},
+          {"pss_agent_max_kB", pss_max},
+          {"pss_agent_max_MB", pss_max / kKiB},
+          {"pss_total_kB", mem.total_pss_kB},
+          {"pss_total_MB", mem.total_pss_kB / kKiB}};
+}
+
 /// One fleet size in one control mode on `hosts` hosts (1: this machine, no namespaces): its
 /// row of the table.
 json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
@@ -171,8 +183,6 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
   const auto steal = [](const std::optional<MachineCpu>& a, const std::optional<MachineCpu>& b) {
     return a && b ? steal_percent(*a, *b) : 0.0;
   };
-  const long pss_max =
-      mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
   json row = {
       {"agents", n},
       {"mode", mode},
@@ -189,12 +199,6 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"ticks_per_wall_s", wall > 0 ? sum.number_or(records::summary_key::kTicks, 0) / wall : 0.0},
       {"real_time_factor", sum.number_or(records::summary_key::kRealTimeFactor, 0)},
       {"cpu_s_per_sim_s", sim > 0 ? cpu / sim : 0.0},
-      {"pss_agent_median_kB", median(mem.agent_pss_kB)},
-      {"pss_agent_median_MB", median(mem.agent_pss_kB) / kKiB},
-      {"pss_agent_max_kB", pss_max},
-      {"pss_agent_max_MB", pss_max / kKiB},
-      {"pss_total_kB", mem.total_pss_kB},
-      {"pss_total_MB", mem.total_pss_kB / kKiB},
       {"samples_per_tick", n + 4},  // one PlantTick, N AgentReply, 2 GroupStatus, 1 CentralCommand
       {"bridge_bytes_per_tick", bridge_bytes_per_tick(sum)},
       {"tick_median_us", tick.median},
@@ -207,6 +211,7 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"floor_cpu_us_per_round", floor.cpu_us_per_round},
       {"steal_pct_fleet", steal(machine0, machine1)},
       {"steal_pct_floor", steal(machine1, machine2)}};
+  row.update(memory_json(mem));
   row.update(fleet_cost_json(cost));
   return row;
 }

@@ -3,7 +3,9 @@
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <exception>
+#include <functional>
 #include <iostream>
+#include <vector>
 
 #include "deploy/cli/fields_command.hpp"
 #include "deploy/cli/fleet_signal.hpp"
@@ -19,43 +21,78 @@
 
 using namespace maptr::deploy::cli;
 
+namespace {
+
+/// Every subcommand's options, and what runs it once parsed.
+class Commands {
+ public:
+  /// Registers the subcommands on `app` in the order `maptr --help` lists them; `bin` is the
+  /// folder of the processes a fleet starts.
+  Commands(CLI::App& app, const std::string& bin) {
+    auto signal = [&](const char* name, SignalArgs& a) {
+      return Entry{add_signal_command(app, name, a), [name, &a] { return cmd_signal(name, a); }};
+    };
+    entries_ = {
+        {add_run_command(app, run_), [this, bin] { return cmd_run(run_, bin); }},
+        {add_fields_command(app, fields_), [this] { return cmd_fields(fields_); }},
+        {add_level2_command(app, level2_), [this] { return cmd_level2(level2_); }},
+        {add_reach_command(app, reach_), [this] { return cmd_reach(reach_); }},
+        {add_experiment_command(app, experiment_), [this, bin] { return cmd_experiment(experiment_, bin); }},
+        {add_bench_command(app, bench_), [this, bin] { return cmd_bench(bench_, bin); }},
+        {add_compare_command(app, compare_), [this, bin] { return cmd_compare(compare_, bin); }},
+        {add_fuzz_command(app, fuzz_), [this, bin] { return cmd_fuzz(fuzz_, bin); }},
+        signal("kill", kill_),
+        signal("restart", restart_),
+        {add_top_command(app, top_), [this, bin] { return cmd_top(top_, bin); }},
+        {add_ps_command(app, ps_), [this] { return cmd_ps(ps_); }},
+        {add_replay_command(app, replay_), [this] { return cmd_replay(replay_); }},
+        {add_plot_command(app, plot_), [this] { return cmd_plot(plot_); }},
+        signal("pause", pause_),
+        signal("resume", resume_),
+        {add_soak_command(app, soak_), [this, bin] { return cmd_soak(soak_, bin); }},
+        signal("kill-host", kill_host_),
+        signal("partition", partition_),
+        signal("heal", heal_),
+    };
+  }
+  Commands(const Commands&) = delete;
+  Commands& operator=(const Commands&) = delete;
+
+  /// Runs the subcommand that was parsed; 2 if none was.
+  int run_parsed() const {
+    for (const auto& e : entries_)
+      if (e.command->parsed()) return e.run();
+    return 2;
+  }
+
+ private:
+  struct Entry {
+    CLI::App* command;
+    std::function<int()> run;
+  };
+  RunArgs run_;
+  FieldsArgs fields_;
+  Level2Args level2_;
+  ReachArgs reach_;
+  ExperimentArgs experiment_;
+  BenchArgs bench_;
+  CompareArgs compare_;
+  FuzzArgs fuzz_;
+  SignalArgs kill_, restart_, pause_, resume_, kill_host_, partition_, heal_;
+  TopArgs top_;
+  PsArgs ps_;
+  ReplayArgs replay_;
+  PlotArgs plot_;
+  SoakArgs soak_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"MAPTR: the multi-agent payload transport robot as a distributed DDS system"};
   app.require_subcommand(1);
-  RunArgs run_args;
-  Level2Args level2_args;
-  ExperimentArgs experiment_args;
-  BenchArgs bench_args;
-  FuzzArgs fuzz_args;
-  SignalArgs kill_args, restart_args, pause_args, resume_args, kill_host_args, partition_args, heal_args;
-  SoakArgs soak_args;
-  TopArgs top_args;
-  PsArgs ps_args;
-  auto* run = add_run_command(app, run_args);
-  FieldsArgs fields_args;
-  auto* fields = add_fields_command(app, fields_args);
-  auto* level2 = add_level2_command(app, level2_args);
-  ReachArgs reach_args;
-  auto* reach = add_reach_command(app, reach_args);
-  auto* experiment = add_experiment_command(app, experiment_args);
-  auto* bench = add_bench_command(app, bench_args);
-  CompareArgs compare_args;
-  auto* compare = add_compare_command(app, compare_args);
-  auto* fuzz = add_fuzz_command(app, fuzz_args);
-  auto* kill = add_signal_command(app, "kill", kill_args);
-  auto* restart = add_signal_command(app, "restart", restart_args);
-  auto* top = add_top_command(app, top_args);
-  auto* ps = add_ps_command(app, ps_args);
-  ReplayArgs replay_args;
-  PlotArgs plot_args;
-  auto* replay = add_replay_command(app, replay_args);
-  auto* plot = add_plot_command(app, plot_args);
-  auto* pause = add_signal_command(app, "pause", pause_args);
-  auto* resume = add_signal_command(app, "resume", resume_args);
-  auto* soak = add_soak_command(app, soak_args);
-  auto* kill_host = add_signal_command(app, "kill-host", kill_host_args);
-  auto* partition = add_signal_command(app, "partition", partition_args);
-  auto* heal = add_signal_command(app, "heal", heal_args);
+  const Commands commands(app, bin_dir(argv[0]));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -71,29 +108,9 @@ int main(int argc, char** argv) {
   // Every subcommand turns bad input into exit 2 with the option or field named; anything that
   // still escapes (an unexpected error) is reported here instead of aborting the program.
   try {
-    if (run->parsed()) return cmd_run(run_args, bin_dir(argv[0]));
-    if (fields->parsed()) return cmd_fields(fields_args);
-    if (experiment->parsed()) return cmd_experiment(experiment_args, bin_dir(argv[0]));
-    if (bench->parsed()) return cmd_bench(bench_args, bin_dir(argv[0]));
-    if (compare->parsed()) return cmd_compare(compare_args, bin_dir(argv[0]));
-    if (fuzz->parsed()) return cmd_fuzz(fuzz_args, bin_dir(argv[0]));
-    if (level2->parsed()) return cmd_level2(level2_args);
-    if (reach->parsed()) return cmd_reach(reach_args);
-    if (kill->parsed()) return cmd_signal("kill", kill_args);
-    if (restart->parsed()) return cmd_signal("restart", restart_args);
-    if (top->parsed()) return cmd_top(top_args, bin_dir(argv[0]));
-    if (ps->parsed()) return cmd_ps(ps_args);
-    if (replay->parsed()) return cmd_replay(replay_args);
-    if (plot->parsed()) return cmd_plot(plot_args);
-    if (pause->parsed()) return cmd_signal("pause", pause_args);
-    if (resume->parsed()) return cmd_signal("resume", resume_args);
-    if (soak->parsed()) return cmd_soak(soak_args, bin_dir(argv[0]));
-    if (kill_host->parsed()) return cmd_signal("kill-host", kill_host_args);
-    if (partition->parsed()) return cmd_signal("partition", partition_args);
-    if (heal->parsed()) return cmd_signal("heal", heal_args);
+    return commands.run_parsed();
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return 1;
   }
-  return 2;
 }

@@ -17,6 +17,31 @@ bool overlaps(const std::vector<Outage>& done, const std::string& target, double
     if (d.target == target && from <= d.to + 0.5 && to >= d.from - 0.5) return true;
   return false;
 }
+
+/// `n` agent faults of every mode, each on a random agent between t0 and t1 and cleared 2 to 8 s
+/// later, from a random stream of their own (seeded from `seed`).
+void add_agent_faults(unsigned seed, const config::Scenario& s, int n, double t0, double t1,
+                      std::vector<config::FaultSpec>& out) {
+  std::uniform_real_distribution<double> when(t0, t1), back(2.0, 8.0);
+  std::mt19937 fault_rng(seed ^ 0x85ebca6bu);
+  const double rated = s.robot.motor.rated_voltage_V;
+  const std::pair<const char*, double> modes[] = {{"open", 0},       {"short", 0},         {"torque", 0.5},
+                                                  {"resistance", 3}, {"stuck", rated / 2}, {"sensor", 5},
+                                                  {"erratic", 2},    {"liar", 0}};
+  std::uniform_int_distribution<int> agent(0, s.robot.agents - 1), mode(0, 7);
+  for (int i = 0; i < n; ++i) {
+    const int a = agent(fault_rng);
+    const auto& [m, v] = modes[mode(fault_rng)];
+    config::FaultSpec f = config::FaultSpec::of(
+        config::agent_name(a / s.robot.per_side(), a % s.robot.per_side()), "fault", 0.0);
+    f.mode = m;
+    f.value = v;
+    f.at_s = std::round(when(fault_rng) * 100.0) / 100.0;
+    out.push_back(f);
+    out.push_back(config::FaultSpec::of(
+        f.target, "clear", std::min(s.duration_s, std::round((f.at_s + back(fault_rng)) * 100.0) / 100.0)));
+  }
+}
 }  // namespace
 
 std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scenario& s,
@@ -62,24 +87,7 @@ std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scena
     out.push_back(config::FaultSpec::of(h, "partition", at));
     out.push_back(config::FaultSpec::of(h, "heal", std::min(s.duration_s, std::round((at + back(rng)) * 100.0) / 100.0)));
   }
-  std::mt19937 fault_rng(seed ^ 0x85ebca6bu);
-  const double rated = s.robot.motor.rated_voltage_V;
-  const std::pair<const char*, double> modes[] = {{"open", 0},       {"short", 0},  {"torque", 0.5},
-                                                  {"resistance", 3}, {"stuck", rated / 2}, {"sensor", 5},
-                                                  {"erratic", 2},    {"liar", 0}};
-  std::uniform_int_distribution<int> agent(0, s.robot.agents - 1), mode(0, 7);
-  for (int i = 0; i < o.agent_faults; ++i) {
-    const int a = agent(fault_rng);
-    const auto& [m, v] = modes[mode(fault_rng)];
-    config::FaultSpec f = config::FaultSpec::of(config::agent_name(a / s.robot.per_side(), a % s.robot.per_side()),
-                                                "fault", 0.0);
-    f.mode = m;
-    f.value = v;
-    f.at_s = std::round(when(fault_rng) * 100.0) / 100.0;
-    out.push_back(f);
-    out.push_back(config::FaultSpec::of(f.target, "clear",
-                                        std::min(s.duration_s, std::round((f.at_s + back(fault_rng)) * 100.0) / 100.0)));
-  }
+  add_agent_faults(seed, s, o.agent_faults, t0, t1, out);
   return out;
 }
 

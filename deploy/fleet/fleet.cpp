@@ -16,7 +16,6 @@
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/secure_domain.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
-#include "records/compression.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -59,15 +58,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
     throw std::runtime_error(domain_problem(o.domain, agents));
   // Participant ids: 0 the discovery server, 1 the launcher, then the fleet.
   dds_.domain = o.domain;
-  if (o.secure) {
-    // a secure domain has no discovery server (simple discovery)
-  } else if (sc_.hosts.enabled()) {
-    setup_hosts();  // a server per host; the launcher on the hosts' network
-  } else {
-    ds_.push_back(std::make_unique<DiscoveryServer>(o.bin_dir + "/maptr_discovery", o.run_dir, o.domain,
-                                                    cfg.discovery_listen_s,
-                                                    cfg.discovery_restart_leases * cfg.lease_s(agents)));
-  }
+  if (!o.secure) make_discovery_servers();  // a secure domain has no discovery server (simple discovery)
   dds_.participant_id = comm::kLauncherParticipantId;
   // The fleet id makes every participant's GUID prefix say which process of this fleet it is
   // (comm/fleet_guid.hpp): followers take ticks only from the plant's writer.
@@ -78,21 +69,8 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   // authenticated tick (learn_secure_plant).
   if (!o.secure) follow_plant(comm::kPlantParticipantId);
   dds_.lease_s = cfg.lease_s(agents);
-  rec_.transport = o.transport != "auto" ? o.transport : "shm";
-  // Between hosts data goes over UDP: every participant then announces both kinds of locator
-  // (a peer on the same host is reached over shared memory, one on another host over UDP).
-  // A secure domain's simple discovery needs every participant's default locators as well.
-  if ((sc_.hosts.enabled() || o.secure) && rec_.transport == "shm") rec_.transport = "shm+udp";
   rec_.chaos_seed = o.chaos_seed;
-  dds_.shm = rec_.transport != "udp";
-  dds_.shm_data_only = rec_.transport == "shm";
-  dds_.shm_port_queue = static_cast<uint32_t>(cfg.shm_port_queue(agents));  // the recorder takes every sample
-  env_ = {{"MAPTR_FLEET_ID", std::to_string(dds_.fleet_id)},
-          {"MAPTR_TRANSPORT", rec_.transport},
-          {"MAPTR_DOMAIN", std::to_string(o.domain)},
-          {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)},
-          {"MAPTR_SHM_PORT_QUEUE", std::to_string(cfg.shm_port_queue(agents))}};
-  if (on_hosts()) env_["MAPTR_PLANT_LOSS_S"] = std::to_string(cfg.host_plant_loss_s);
+  choose_transport();
   make_children();
   if (on_hosts()) place_children();
   if (!ds_.empty()) {
@@ -104,6 +82,42 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   }
   // On several hosts the launcher (on the bridge) registers with the plant's host's server.
   if (on_hosts()) dds_.own_server = kids_.front().host;
+  join_domain();
+  start_recorder();
+  t_launch_ = Clock::now();
+}
+
+void Fleet::make_discovery_servers() {
+  if (sc_.hosts.enabled()) {
+    setup_hosts();  // a server per host; the launcher on the hosts' network
+    return;
+  }
+  const int agents = sc_.robot.agents;
+  ds_.push_back(std::make_unique<DiscoveryServer>(o_.bin_dir + "/maptr_discovery", o_.run_dir, o_.domain,
+                                                  cfg_.discovery_listen_s,
+                                                  cfg_.discovery_restart_leases * cfg_.lease_s(agents)));
+}
+
+void Fleet::choose_transport() {
+  const int agents = sc_.robot.agents;
+  rec_.transport = o_.transport != "auto" ? o_.transport : "shm";
+  // Between hosts data goes over UDP: every participant then announces both kinds of locator
+  // (a peer on the same host is reached over shared memory, one on another host over UDP).
+  // A secure domain's simple discovery needs every participant's default locators as well.
+  if ((sc_.hosts.enabled() || o_.secure) && rec_.transport == "shm") rec_.transport = "shm+udp";
+  dds_.shm = rec_.transport != "udp";
+  dds_.shm_data_only = rec_.transport == "shm";
+  dds_.shm_port_queue =
+      static_cast<uint32_t>(cfg_.shm_port_queue(agents));  // the recorder takes every sample
+  env_ = {{"MAPTR_FLEET_ID", std::to_string(dds_.fleet_id)},
+          {"MAPTR_TRANSPORT", rec_.transport},
+          {"MAPTR_DOMAIN", std::to_string(o_.domain)},
+          {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)},
+          {"MAPTR_SHM_PORT_QUEUE", std::to_string(cfg_.shm_port_queue(agents))}};
+  if (on_hosts()) env_["MAPTR_PLANT_LOSS_S"] = std::to_string(cfg_.host_plant_loss_s);
+}
+
+void Fleet::join_domain() {
   participant_ = std::make_unique<comm::Participant>("launcher", dds_);
   auto& p = *participant_;
   p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &ready_);
@@ -112,8 +126,6 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
       p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched);
   w_control_ = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
   p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &gates_);
-  start_recorder();
-  t_launch_ = Clock::now();
 }
 
 Fleet::~Fleet() {
@@ -152,102 +164,6 @@ void Fleet::make_children() {
       const std::string n = config::agent_name(s, j);
       add(n, "maptr_agent", {"--id", n}, ChildKind::kAgent, s, static_cast<uint16_t>(j));
     }
-}
-
-void Fleet::start_recorder() {
-  const auto scope = recorder::parse_scope(sc_.record);
-  if (scope == recorder::Scope::kNone) return;
-  // The recorder's participant takes the launcher's id in the second id window: no process of
-  // the fleet ever has it (comm/fleet_ids.hpp).
-  comm::DdsOptions o = dds_;
-  const int id = comm::fleet_stride(sc_.robot.agents) + comm::kLauncherParticipantId;
-  o.participant_id = id <= comm::rtps_max_participant_id(o_.domain) ? id : -1;
-  o.shm_port_queue = static_cast<uint32_t>(cfg_.recorder_port_queue(sc_.robot.agents));
-  recorder_id_ = o.participant_id;
-  recorder_ = std::make_unique<recorder::Recorder>(o, o_.run_dir + "/run.mcap", scope, sc_.robot.agents,
-                                                   records::mcap_compression(sc_.record_compression));
-}
-
-void Fleet::await_recorder() {
-  if (!recorder_) return;
-  // Before the start, the recorder has matched every writer of the lock-step (the volatile
-  // topics; the latched ones are resent to it). It joined before the children started, so each
-  // writer has long discovered it too: a reader's match alone does not say that its writer sends
-  // to it yet.
-  const int agents = sc_.robot.agents;
-  const std::map<std::string, int> writers = {{comm::topic::kTick, 1},    {comm::topic::kAgentReply, agents},
-                                              {comm::topic::kGroup, 2},   {comm::topic::kCentral, 1},
-                                              {comm::topic::kControl, 1}, {comm::topic::kMembership, 1}};
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(cfg_.discovery_timeout_s(agents)));
-  // An agent can report ready (its writer matched the recorder's reader) while the recorder's
-  // reader never matches its writer (seen once in a fleet of 512). Such agents are started again
-  // after the rematch interval without progress, as the unready ones are during discovery.
-  std::size_t matched = 0;
-  auto progress = Clock::now();
-  // Done when the recorder has matched every writer and every process is (again) ready.
-  while (!recorder_->wait_matched(writers, std::min(deadline, Clock::now() + std::chrono::seconds(1))) ||
-         ready_names_.size() < kids_.size()) {
-    if (ready_names_.size() < kids_.size()) seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
-    take_ready();
-    reap(false);
-    if (interrupted().load()) return;
-    if (Clock::now() > deadline) {
-      log_.warn("recorder: not every writer matched before the start ({}; not ready: {}); run.mcap misses their "
-                "samples until they match",
-                recorder_->missing(), not_ready());
-      return;
-    }
-    const std::size_t now_matched = recorder_->matched_writers(comm::topic::kAgentReply).size();
-    if (now_matched != matched) {
-      matched = now_matched;
-      progress = Clock::now();
-    }
-    if (since(progress) > cfg_.rematch_s(agents, secure()) && rematch_unrecorded()) progress = Clock::now();
-  }
-}
-
-bool Fleet::rematch_unrecorded() {
-  // written_by() names a writer by the fleet id in its GUID prefix, or on a secure domain by the
-  // certificate that prefix was derived from (comm/fleet_guid.hpp).
-  const auto seen = recorder_->matched_writers(comm::topic::kAgentReply);
-  std::vector<Child*> unseen;
-  for (auto& c : kids_) {
-    if (c.kind != ChildKind::kAgent || c.external || !c.running) continue;
-    const bool recorded = std::any_of(seen.begin(), seen.end(), [&](const auto& h) {
-      return comm::written_by(dds_.fleet_id, sc_.robot.agents, h, c.name);
-    });
-    if (!recorded) unseen.push_back(&c);
-  }
-  for (Child* c : unseen) {
-    start_again(*c);
-    ready_names_.erase(c->name);
-    rec_.rematched.push_back(c->name);
-    log_.warn("run.mcap's recorder did not match {}'s writer within {:.0f} s; started it again (pid {})", c->name,
-              cfg_.rematch_s(sc_.robot.agents, secure()), c->pid);
-  }
-  if (unseen.empty()) return false;
-  // The restarted agents report ready again before the start.
-  const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                        std::chrono::duration<double>(cfg_.rematch_s(sc_.robot.agents, secure())));
-  while (ready_names_.size() < kids_.size() && Clock::now() < until && !interrupted().load()) {
-    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
-    take_ready();
-    reap(false);
-  }
-  return true;
-}
-
-void Fleet::stop_recorder() {
-  if (!recorder_) return;
-  recorder_->stop();
-  std::string counts;
-  for (const auto& [topic, n] : recorder_->counts()) counts += " " + topic + " " + std::to_string(n);
-  rec_.recorded = recorder_->counts();
-  rec_.recorded_rejected = recorder_->rejected();
-  std::string dropped;
-  for (const auto& [kind, n] : rec_.recorded_rejected) dropped += " " + kind + " " + std::to_string(n);
-  log_.info("recorded run.mcap:{}{}", counts, dropped.empty() ? "" : "; marked as dropped by the fleet:" + dropped);
 }
 
 void Fleet::make_secure_domain() {
@@ -361,46 +277,6 @@ void Fleet::start_processes() {
   if (o_.progress)
     std::fprintf(stderr, "maptr: launched %zu processes (%d agents, 2 groups, central, plant)\n",
                  kids_.size(), sc_.robot.agents);
-}
-
-std::string Fleet::not_ready() const {
-  std::string missing;
-  for (const auto& c : kids_)
-    if (!ready_names_.count(c.name)) missing += (missing.empty() ? "" : " ") + c.name;
-  return missing;
-}
-
-pid_t Fleet::start_again(Child& c) {
-  // SIGTERM, not SIGKILL: a process killed inside a shared-memory operation leaves its lock held
-  // and the others' transport aborts.
-  const pid_t old = c.pid;
-  stop_process(c.pid, cfg_.end_term_s);
-  c.running = false;
-  spawn_child(c);
-  write_fleet();
-  return old;
-}
-
-void Fleet::rematch_unready() {
-  // Before the run starts: end and start again, with the next participant id of its window,
-  // every started process that is not ready; the plant (ready once it matched everyone) only
-  // when it is the last one.
-  std::vector<Child*> unready;
-  for (std::size_t i = 0; i < waves_->started(); ++i) {
-    Child& c = kids_[i];
-    if (!c.external && c.running && !ready_names_.count(c.name)) unready.push_back(&c);
-  }
-  if (unready.size() > 1)
-    unready.erase(
-        std::remove_if(unready.begin(), unready.end(), [](Child* c) { return c->kind == ChildKind::kPlant; }),
-        unready.end());
-  for (Child* c : unready) {
-    start_again(*c);
-    rec_.rematched.push_back(c->name);
-    log_.warn("{} did not match the fleet within {:.0f} s of discovery's last progress; started again (pid {})",
-              c->name, cfg_.rematch_s(sc_.robot.agents, secure()), c->pid);
-  }
-  last_progress_ = Clock::now();
 }
 
 bool Fleet::discover() {

@@ -57,6 +57,12 @@ class Fleet {
 
  private:
   using Clock = std::chrono::steady_clock;
+  /// The discovery server of this machine, or one per host (not on a secure domain).
+  void make_discovery_servers();
+  /// The transport the fleet's participants use and the environment that tells them.
+  void choose_transport();
+  /// The launcher's participant: readiness, ticks and gates in; membership and control out.
+  void join_domain();
   void make_children();
   void start_recorder();
   void await_recorder();

@@ -1,5 +1,6 @@
 // The launcher's readiness: a NodeReady counts only from the participant the launcher expects
 // for that process (deploy/fleet/ready_check.hpp); forged and stale ones are counted and logged.
+// A process that does not get ready in time is started again.
 #include <algorithm>
 
 #include "comm/fleet_guid.hpp"
@@ -96,6 +97,46 @@ void Fleet::announce_restarted() {
     publish_member(*c, msg::MEMBER_STARTED);
     log_.info("{} (pid {}) restarted and ready", c->name, c->pid);
   }
+}
+
+std::string Fleet::not_ready() const {
+  std::string missing;
+  for (const auto& c : kids_)
+    if (!ready_names_.count(c.name)) missing += (missing.empty() ? "" : " ") + c.name;
+  return missing;
+}
+
+pid_t Fleet::start_again(Child& c) {
+  // SIGTERM, not SIGKILL: a process killed inside a shared-memory operation leaves its lock held
+  // and the others' transport aborts.
+  const pid_t old = c.pid;
+  stop_process(c.pid, cfg_.end_term_s);
+  c.running = false;
+  spawn_child(c);
+  write_fleet();
+  return old;
+}
+
+void Fleet::rematch_unready() {
+  // Before the run starts: end and start again, with the next participant id of its window,
+  // every started process that is not ready; the plant (ready once it matched everyone) only
+  // when it is the last one.
+  std::vector<Child*> unready;
+  for (std::size_t i = 0; i < waves_->started(); ++i) {
+    Child& c = kids_[i];
+    if (!c.external && c.running && !ready_names_.count(c.name)) unready.push_back(&c);
+  }
+  if (unready.size() > 1)
+    unready.erase(
+        std::remove_if(unready.begin(), unready.end(), [](Child* c) { return c->kind == ChildKind::kPlant; }),
+        unready.end());
+  for (Child* c : unready) {
+    start_again(*c);
+    rec_.rematched.push_back(c->name);
+    log_.warn("{} did not match the fleet within {:.0f} s of discovery's last progress; started again (pid {})",
+              c->name, cfg_.rematch_s(sc_.robot.agents, secure()), c->pid);
+  }
+  last_progress_ = Clock::now();
 }
 
 }  // namespace maptr::deploy::fleet

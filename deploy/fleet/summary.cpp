@@ -273,11 +273,10 @@ std::string fault_lines(const nlohmann::json& s) {
        << " healthy agents isolated (false detections): see plant.json agent_faults.diagnoses\n";
   return os.str();
 }
-}  // namespace
 
-std::string human_summary(const nlohmann::json& s) {
-  std::ostringstream os;
-  char buf[512];
+/// The run in seven lines: status, scenario, times, energy, battery, processes, trace.
+std::string run_lines(const nlohmann::json& s) {
+  char buf[1024];
   long rss_max = 0;
   double rss_sum = 0;
   for (const auto& p : s["processes"]) {
@@ -301,7 +300,39 @@ std::string human_summary(const nlohmann::json& s) {
                 s["processes"].size(), rss_max / 1024.0,
                 s["processes"].empty() ? 0.0 : rss_sum / 1024.0 / s["processes"].size(),
                 s.value("trace_sha256", "").c_str());
-  os << buf;
+  return buf;
+}
+
+/// A line per side whose Level 2 decided: its count, Ipopt's time, the oracle, infeasibility.
+std::string level2_lines(const nlohmann::json& s) {
+  std::string out;
+  char buf[512];
+  if (s.contains("level2") && s["level2"].is_object())
+    for (const auto& [side, l2] : s["level2"].items()) {
+      if (l2.value("decisions", 0) == 0) continue;
+      std::snprintf(buf, sizeof(buf), "level 2 %s   %d decisions, Ipopt median %.1f ms (max %.1f)%s%s\n",
+                    side.c_str(), l2.value("decisions", 0), l2.value("solve_ms_median", 0.0),
+                    l2.value("solve_ms_max", 0.0),
+                    l2.value("oracle_checked", 0) > 0
+                        ? (", oracle differed " + std::to_string(l2.value("oracle_differs", 0)) + " of " +
+                           std::to_string(l2.value("oracle_checked", 0)))
+                              .c_str()
+                        : "",
+                    l2.value("infeasible", 0) > 0
+                        ? (", infeasible " + std::to_string(l2.value("infeasible", 0)) +
+                           " times: the load needs more than the live agents give, all of them ran")
+                              .c_str()
+                        : "");
+      out += buf;
+    }
+  return out;
+}
+}  // namespace
+
+std::string human_summary(const nlohmann::json& s) {
+  std::ostringstream os;
+  char buf[512];
+  os << run_lines(s);
   if (s.contains("path") && s["path"].is_object() && !s["path"].empty()) {
     const auto& p = s["path"];
     std::snprintf(buf, sizeof(buf),
@@ -327,24 +358,7 @@ std::string human_summary(const nlohmann::json& s) {
     os << buf;
   }
   os << fault_lines(s);
-  if (s.contains("level2") && s["level2"].is_object())
-    for (const auto& [side, l2] : s["level2"].items()) {
-      if (l2.value("decisions", 0) == 0) continue;
-      std::snprintf(buf, sizeof(buf), "level 2 %s   %d decisions, Ipopt median %.1f ms (max %.1f)%s%s\n",
-                    side.c_str(), l2.value("decisions", 0), l2.value("solve_ms_median", 0.0),
-                    l2.value("solve_ms_max", 0.0),
-                    l2.value("oracle_checked", 0) > 0
-                        ? (", oracle differed " + std::to_string(l2.value("oracle_differs", 0)) + " of " +
-                           std::to_string(l2.value("oracle_checked", 0)))
-                              .c_str()
-                        : "",
-                    l2.value("infeasible", 0) > 0
-                        ? (", infeasible " + std::to_string(l2.value("infeasible", 0)) +
-                           " times: the load needs more than the live agents give, all of them ran")
-                              .c_str()
-                        : "");
-      os << buf;
-    }
+  os << level2_lines(s);
   return os.str();
 }
 
