@@ -1,5 +1,6 @@
 #include "comm/dds.hpp"
 
+#include "comm/environment.hpp"
 #include "comm/fleet_guid.hpp"
 #include "comm/participant_qos.hpp"
 #include "comm/security.hpp"
@@ -137,7 +138,7 @@ void load_qos_profiles() {
   std::call_once(once, [] {
     auto* f = dds::DomainParticipantFactory::get_instance();
     f->load_profiles();
-    if (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")) return;
+    if (std::getenv(kEnvQosProfiles)) return;
     const std::string file = qos_profiles_file();
     if (f->load_XML_profiles_file(file) != ReturnCode_t::RETCODE_OK)
       throw std::runtime_error("cannot load the DDS QoS profiles from " + file);
@@ -157,7 +158,7 @@ std::runtime_error missing_profile(const char* name) {
 }  // namespace
 
 std::string qos_profiles_file() {
-  if (const char* f = std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")) return f;
+  if (const char* f = std::getenv(kEnvQosProfiles)) return f;
   return exe_dir() + "/maptr_qos.xml";
 }
 
@@ -219,22 +220,21 @@ dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::D
 
 DdsOptions options_from_env() {
   DdsOptions o;
-  if (const char* d = std::getenv("MAPTR_DOMAIN")) o.domain = std::atoi(d);
-  if (const char* s = std::getenv("MAPTR_DISCOVERY_SERVER")) o.discovery_server = s;
-  if (const char* i = std::getenv("MAPTR_DISCOVERY_INDEX")) o.server_index = std::atoi(i);
-  if (const char* i = std::getenv("MAPTR_DISCOVERY_OWN")) o.own_server = std::atoi(i);
-  if (const char* a = std::getenv("MAPTR_INTERFACE")) o.interface_address = a;
-  if (const char* l = std::getenv("MAPTR_LEASE_S")) o.lease_s = std::atof(l);
-  if (const char* t = std::getenv("MAPTR_TRANSPORT")) {
+  if (const char* d = std::getenv(kEnvDomain)) o.domain = std::atoi(d);
+  if (const char* s = std::getenv(kEnvDiscoveryServer)) o.discovery_server = s;
+  if (const char* i = std::getenv(kEnvDiscoveryOwn)) o.own_server = std::atoi(i);
+  if (const char* a = std::getenv(kEnvInterface)) o.interface_address = a;
+  if (const char* l = std::getenv(kEnvLease)) o.lease_s = std::atof(l);
+  if (const char* t = std::getenv(kEnvTransport)) {
     o.shm = std::string(t) != "udp";
     o.shm_data_only = std::string(t) == "shm";
   }
-  if (const char* q = std::getenv("MAPTR_SHM_PORT_QUEUE")) o.shm_port_queue = static_cast<uint32_t>(std::atol(q));
-  if (const char* id = std::getenv("MAPTR_PARTICIPANT_ID")) o.participant_id = std::atoi(id);
-  if (const char* m = std::getenv("MAPTR_SHM_SEGMENT_BYTES")) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
-  if (const char* f = std::getenv("MAPTR_FLEET_ID")) o.fleet_id = static_cast<uint32_t>(std::strtoul(f, nullptr, 10));
-  if (const char* s = std::getenv("MAPTR_SECURITY_DIR")) o.security_dir = s;
-  if (const char* l = std::getenv("MAPTR_DDS_LOG")) o.dds_log = l;
+  if (const char* q = std::getenv(kEnvShmPortQueue)) o.shm_port_queue = static_cast<uint32_t>(std::atol(q));
+  if (const char* id = std::getenv(kEnvParticipantId)) o.participant_id = std::atoi(id);
+  if (const char* m = std::getenv(kEnvShmSegmentBytes)) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
+  if (const char* f = std::getenv(kEnvFleetId)) o.fleet_id = static_cast<uint32_t>(std::strtoul(f, nullptr, 10));
+  if (const char* s = std::getenv(kEnvSecurityDir)) o.security_dir = s;
+  if (const char* l = std::getenv(kEnvDdsLog)) o.dds_log = l;
   return o;
 }
 

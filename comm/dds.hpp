@@ -370,7 +370,7 @@ eprosima::fastrtps::rtps::Locator_t shm_unicast_locator();
 /// The entries of a comma-separated list of discovery servers.
 std::vector<std::string> split_servers(const std::string& list);
 
-/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER (one or a comma-separated list), MAPTR_DISCOVERY_INDEX, MAPTR_LEASE_S, MAPTR_INTERFACE, MAPTR_TRANSPORT ("shm": data on
+/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER (one or a comma-separated list), MAPTR_LEASE_S, MAPTR_INTERFACE, MAPTR_TRANSPORT ("shm": data on
 /// shared memory only; "shm+udp": data on both; "udp": loopback UDP only), MAPTR_SHM_PORT_QUEUE,
 /// MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES, MAPTR_FLEET_ID and MAPTR_SECURITY_DIR into the options (the
 /// launcher sets them for its children); explicit command-line values override them.

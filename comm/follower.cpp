@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include "comm/environment.hpp"
 #include "comm/fleet_guid.hpp"
 #include "comm/lockstep.hpp"
 #include "comm/tick_filter.hpp"
@@ -92,7 +93,7 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
   auto& stop = stop_flag();
   // On a fleet of several hosts the launcher sets MAPTR_PLANT_LOSS_S: a process cut off by a
   // network partition waits that long for the plant to come back instead of two leases.
-  const char* loss = std::getenv("MAPTR_PLANT_LOSS_S");
+  const char* loss = std::getenv(kEnvPlantLoss);
   PlantWatch plant(loss ? std::atof(loss) : 2.0 * args_.dds.lease_s);
   bool announced = false;
   uint64_t seen = signal_.count();

@@ -7,13 +7,14 @@
 #include <fastrtps/utils/IPFinder.h>
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/utils/md5.h>
-#include <fastdds/dds/log/Log.hpp>
 
 #include <algorithm>
 #include <cstdio>
+#include <fastdds/dds/log/Log.hpp>
 #include <memory>
 #include <stdexcept>
 
+#include "comm/environment.hpp"
 #include "comm/fleet_guid.hpp"
 
 namespace maptr::comm {
@@ -96,7 +97,8 @@ void set_dds_log_level(const std::string& level) {
   else if (level == "info")
     Log::SetVerbosity(Log::Info);
   else
-    std::fprintf(stderr, "MAPTR_DDS_LOG=%s: expected error, warning or info; Fast DDS's default kept\n", level.c_str());
+    std::fprintf(stderr, "%s=%s: expected error, warning or info; Fast DDS's default kept\n", kEnvDdsLog,
+                 level.c_str());
 }
 
 }  // namespace

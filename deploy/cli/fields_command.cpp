@@ -11,11 +11,20 @@ CLI::App* add_fields_command(CLI::App& app, FieldsArgs& a) {
       "fields", "the scenario's fields (path, type, default, allowed values, unit, description); --summary: summary.json's keys");
   c->add_option("prefix", a.prefix, "only the fields whose path starts with this, e.g. control. or faults[]");
   c->add_flag("--markdown", a.markdown, "as a markdown table (docs/SCENARIO.md, docs/SUMMARY.md)");
-  c->add_flag("--summary", a.summary, "the keys of a run's summary.json instead of the scenario's fields");
+  auto* summary = c->add_flag("--summary", a.summary,
+                              "the keys of a run's summary.json instead of the scenario's fields");
+  c->add_flag(
+       "--environment", a.environment,
+       "the environment variables MAPTR reads (who sets each, its values) instead of the scenario's fields")
+      ->excludes(summary);
   return c;
 }
 
 int cmd_fields(const FieldsArgs& a) {
+  if (a.environment) {
+    std::cout << report::environment_reference(a.markdown);
+    return 0;
+  }
   const int n = a.summary ? report::summary_key_count(a.prefix) : report::scenario_field_count(a.prefix);
   if (n == 0) {
     std::cerr << "maptr: fields " << a.prefix << ": no " << (a.summary ? "summary.json key" : "scenario field")

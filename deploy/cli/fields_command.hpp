@@ -1,6 +1,7 @@
 #pragma once
-// `maptr fields [PREFIX]`: the scenario's fields (or, with --summary, summary.json's keys), as
-// text or as the markdown of docs/SCENARIO.md and docs/SUMMARY.md.
+// `maptr fields [PREFIX]`: the scenario's fields (with --summary summary.json's keys, with
+// --environment the environment variables), as text or as the markdown of docs/SCENARIO.md,
+// docs/SUMMARY.md and docs/ENVIRONMENT.md.
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -10,6 +11,7 @@ struct FieldsArgs {
   std::string prefix;
   bool markdown = false;
   bool summary = false;
+  bool environment = false;
 };
 
 CLI::App* add_fields_command(CLI::App& app, FieldsArgs& a);

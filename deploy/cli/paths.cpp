@@ -4,6 +4,8 @@
 #include <ctime>
 #include <filesystem>
 
+#include "comm/environment.hpp"
+
 namespace maptr::deploy::cli {
 
 namespace fs = std::filesystem;
@@ -30,7 +32,7 @@ std::string unique_run_dir(const std::string& base, const std::string& name) {
 
 int resolve_domain(int option) {
   if (option >= 0) return option;
-  const char* env = std::getenv("MAPTR_DOMAIN");
+  const char* env = std::getenv(comm::kEnvDomain);
   return env ? std::atoi(env) : 0;
 }
 

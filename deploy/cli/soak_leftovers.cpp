@@ -8,6 +8,7 @@
 #include <fstream>
 #include <thread>
 
+#include "comm/environment.hpp"
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/shm_segments.hpp"
 #include "deploy/fleet/summary.hpp"
@@ -39,7 +40,7 @@ void sample_segments(pid_t launcher, const std::string& dir, std::set<std::strin
 }
 
 std::vector<pid_t> pids_of_fleet(const std::string& fleet_id) {
-  const std::string needle = "MAPTR_FLEET_ID=" + fleet_id;
+  const std::string needle = std::string(comm::kEnvFleetId) + "=" + fleet_id;
   std::vector<pid_t> out;
   for (const auto& e : fs::directory_iterator("/proc")) {
     const std::string name = e.path().filename();

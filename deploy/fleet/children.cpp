@@ -1,5 +1,6 @@
 #include "deploy/fleet/children.hpp"
 
+#include "comm/environment.hpp"
 #include "deploy/fleet/hosts.hpp"
 #include "deploy/fleet/zygote.hpp"
 
@@ -117,7 +118,7 @@ namespace {
 Environment own_environment(const Child& c, const Environment& env, int participant_id) {
   Environment own = env;
   for (const auto& [k, v] : c.host_env) own[k] = v;
-  own["MAPTR_PARTICIPANT_ID"] = std::to_string(participant_id);
+  own[comm::kEnvParticipantId] = std::to_string(participant_id);
   return own;
 }
 }  // namespace

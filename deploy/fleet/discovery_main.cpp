@@ -12,21 +12,23 @@
 #include <thread>
 
 #include "comm/dds.hpp"
+#include "comm/environment.hpp"
 #include "comm/process.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"MAPTR discovery server (started and stopped by `maptr run`)"};
   maptr::comm::DdsOptions o = maptr::comm::options_from_env();
-  app.add_option("--address", o.discovery_server,
-                 "HOST:PORT to listen on, or the fleet's list HOST:PORT,HOST:PORT,... (default: "
-                 "MAPTR_DISCOVERY_SERVER)");
+  app.add_option(
+      "--address", o.discovery_server,
+      std::string("HOST:PORT to listen on, or the fleet's list HOST:PORT,HOST:PORT,... (default: ") +
+          maptr::comm::kEnvDiscoveryServer + ")");
   app.add_option("--index", o.server_index,
                  "which entry of the list this server is (its GUID prefix; it connects to the others)");
-  app.add_option("--domain", o.domain, "DDS domain (default: MAPTR_DOMAIN)");
+  app.add_option("--domain", o.domain, std::string("DDS domain (default: ") + maptr::comm::kEnvDomain + ")");
   CLI11_PARSE(app, argc, argv);
   if (o.discovery_server.empty()) {
-    std::fprintf(stderr,
-                 "maptr_discovery: no address: give --address HOST:PORT or set MAPTR_DISCOVERY_SERVER\n");
+    std::fprintf(stderr, "maptr_discovery: no address: give --address HOST:PORT or set %s\n",
+                 maptr::comm::kEnvDiscoveryServer);
     return 2;
   }
   o.is_server = true;  // transports as for the fleet (MAPTR_TRANSPORT)

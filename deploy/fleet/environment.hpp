@@ -6,10 +6,12 @@
 #include <optional>
 #include <string>
 
+#include "comm/environment.hpp"
+
 namespace maptr::deploy::fleet {
 
 /// MAPTR_DDS_LOG: Fast DDS's log level in every process (comm/dds.hpp, DdsOptions::dds_log).
-inline constexpr const char* kDdsLogEnv = "MAPTR_DDS_LOG";
+inline constexpr const char* kDdsLogEnv = comm::kEnvDdsLog;
 
 /// The first variable with a value outside its set, as "NAME=VALUE: expected ...", or nothing.
 std::optional<std::string> environment_error(const std::function<const char*(const char*)>& getenv);

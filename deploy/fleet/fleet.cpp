@@ -10,6 +10,7 @@
 #include <fstream>
 #include <random>
 
+#include "comm/environment.hpp"
 #include "comm/fleet_guid.hpp"
 #include "comm/fleet_ids.hpp"
 #include "comm/raw_type.hpp"
@@ -76,7 +77,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   if (!ds_.empty()) {
     for (auto& ds : ds_) ds->start_or_throw(env_, ids_);
     if (!on_hosts()) dds_.discovery_server = ds_.front()->address();  // the port it listens on
-    env_["MAPTR_DISCOVERY_SERVER"] = dds_.discovery_server;
+    env_[comm::kEnvDiscoveryServer] = dds_.discovery_server;
   } else {
     make_secure_domain();
   }
@@ -109,12 +110,12 @@ void Fleet::choose_transport() {
   dds_.shm_data_only = rec_.transport == "shm";
   dds_.shm_port_queue =
       static_cast<uint32_t>(cfg_.shm_port_queue(agents));  // the recorder takes every sample
-  env_ = {{"MAPTR_FLEET_ID", std::to_string(dds_.fleet_id)},
-          {"MAPTR_TRANSPORT", rec_.transport},
-          {"MAPTR_DOMAIN", std::to_string(o_.domain)},
-          {"MAPTR_LEASE_S", std::to_string(dds_.lease_s)},
-          {"MAPTR_SHM_PORT_QUEUE", std::to_string(cfg_.shm_port_queue(agents))}};
-  if (on_hosts()) env_["MAPTR_PLANT_LOSS_S"] = std::to_string(cfg_.host_plant_loss_s);
+  env_ = {{comm::kEnvFleetId, std::to_string(dds_.fleet_id)},
+          {comm::kEnvTransport, rec_.transport},
+          {comm::kEnvDomain, std::to_string(o_.domain)},
+          {comm::kEnvLease, std::to_string(dds_.lease_s)},
+          {comm::kEnvShmPortQueue, std::to_string(cfg_.shm_port_queue(agents))}};
+  if (on_hosts()) env_[comm::kEnvPlantLoss] = std::to_string(cfg_.host_plant_loss_s);
 }
 
 void Fleet::join_domain() {
@@ -174,7 +175,7 @@ void Fleet::make_secure_domain() {
   domain.add_identity({"recorder", {}});  // run.mcap: reads every topic, writes none
   for (const auto& c : kids_) domain.add_identity({c.name, comm::published_topics(c.name)});
   dds_.security_dir = domain.files().dir;
-  env_["MAPTR_SECURITY_DIR"] = dds_.security_dir;
+  env_[comm::kEnvSecurityDir] = dds_.security_dir;
   log_.info("secure domain: CA and {} identities in {} ({:.2f} s)", kids_.size() + 1, dds_.security_dir,
             since(t0));
 }
@@ -237,7 +238,7 @@ void Fleet::print_external_commands() const {
     if (!c.external) continue;
     std::string cmd;
     for (const auto& [k, v] : env_) cmd += k + "=" + v + " ";
-    cmd += "MAPTR_PARTICIPANT_ID=" + std::to_string(c.base_id) + " " + c.binary;
+    cmd += std::string(comm::kEnvParticipantId) + "=" + std::to_string(c.base_id) + " " + c.binary;
     for (const auto& a : c.args) cmd += " " + a;
     std::fprintf(stderr, "maptr: waiting for %s; start it with:\n  %s\n", c.name.c_str(), cmd.c_str());
     log_.info("external {}: {}", c.name, cmd);

@@ -4,6 +4,7 @@
 
 #include <csignal>
 
+#include "comm/environment.hpp"
 #include "deploy/fleet/fleet.hpp"
 
 namespace maptr::deploy::fleet {
@@ -15,7 +16,7 @@ Child host_template(const Host& h, int index) {
   Child c;
   c.host = index;
   c.prefix = h.prefix;
-  c.host_env = {{"MAPTR_INTERFACE", h.address}, {"MAPTR_DISCOVERY_OWN", std::to_string(index)}};
+  c.host_env = {{comm::kEnvInterface, h.address}, {comm::kEnvDiscoveryOwn, std::to_string(index)}};
   return c;
 }
 }  // namespace

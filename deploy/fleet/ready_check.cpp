@@ -5,6 +5,8 @@
 #include <iterator>
 #include <vector>
 
+#include "comm/environment.hpp"
+
 namespace maptr::deploy::fleet {
 
 ReadyVerdict judge_ready(const ReadyClaim& c) {
@@ -65,8 +67,8 @@ std::optional<std::string> external_pid_problem(pid_t pid, const std::string& bi
   const auto want = std::filesystem::weakly_canonical(binary, ec);
   if (exe != want && exe != std::filesystem::path(binary))
     return "pid " + std::to_string(pid) + " runs " + exe.string() + ", not " + binary;
-  const std::string fid = "MAPTR_FLEET_ID=" + std::to_string(fleet_id);
-  const std::string part = "MAPTR_PARTICIPANT_ID=" + std::to_string(participant_id);
+  const std::string fid = std::string(comm::kEnvFleetId) + "=" + std::to_string(fleet_id);
+  const std::string part = std::string(comm::kEnvParticipantId) + "=" + std::to_string(participant_id);
   bool has_fid = false, has_part = false;
   for (const auto& e : *env) {
     has_fid = has_fid || e == fid;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "comm/environment.hpp"
 #include "deploy/fleet/control_fifo.hpp"
 
 namespace maptr::deploy::fleet {
@@ -44,7 +45,7 @@ std::string registry_dir(const char* xdg_runtime_dir, unsigned uid) {
   return "/tmp/maptr-" + std::to_string(uid) + "/fleets";
 }
 
-std::string registry_dir() { return registry_dir(std::getenv("XDG_RUNTIME_DIR"), getuid()); }
+std::string registry_dir() { return registry_dir(std::getenv(comm::kEnvRuntimeDir), getuid()); }
 
 long long process_start_ticks(int pid) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/stat");

@@ -11,12 +11,13 @@
 #include <utility>
 #include <vector>
 
+#include "comm/environment.hpp"
 #include "deploy/fleet/children.hpp"
 
 namespace maptr::deploy::fleet {
 
 /// MAPTR_AGENT_START=exec: the launcher starts every agent with exec (no zygote); default zygote.
-inline constexpr const char* kAgentStartEnv = "MAPTR_AGENT_START";
+inline constexpr const char* kAgentStartEnv = comm::kEnvAgentStart;
 
 class Zygote {
  public:

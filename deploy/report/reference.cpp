@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "comm/environment.hpp"
 #include "config/scenario.hpp"
 #include "records/summary_fields.hpp"
 
@@ -93,7 +94,29 @@ constexpr const char* kSummaryHead =
     "topic). `scenario` is the scenario's name; the scenario as run is the run folder's\n"
     "`scenario.yaml`, whose fields are in [SCENARIO.md](SCENARIO.md).\n\n";
 
+constexpr const char* kEnvironmentHead =
+    "# Environment variables\n\n"
+    "Every environment variable MAPTR reads, generated from the table in `comm/environment.hpp` by\n"
+    "`maptr fields --environment --markdown` (do not edit by hand: a unit test fails when this file\n"
+    "differs from the table, and another when the product names a `MAPTR_*` variable the table\n"
+    "lacks). A user may set those marked `user` (`maptr run` refuses a `MAPTR_DDS_LOG` or\n"
+    "`MAPTR_AGENT_START` outside its set before anything starts, exit 2). The launcher sets the\n"
+    "others for the processes it starts: they are how a fleet's settings reach each process.\n\n";
+
 }  // namespace
+
+std::string environment_reference(bool markdown) {
+  std::ostringstream os;
+  if (markdown) os << kEnvironmentHead << "| variable | set by | values | meaning |\n|---|---|---|---|\n";
+  for (const auto& v : comm::kEnvironment) {
+    if (markdown)
+      os << "| `" << v.name << "` | " << v.set_by << " | " << cell(v.values) << " | " << cell(v.meaning)
+         << " |\n";
+    else
+      os << v.name << "  set by " << v.set_by << "  values " << v.values << "\n    " << v.meaning << "\n";
+  }
+  return os.str();
+}
 
 std::string scenario_reference(const std::string& prefix, bool markdown) {
   std::ostringstream os;

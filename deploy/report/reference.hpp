@@ -1,8 +1,9 @@
 #pragma once
 // The references a user reads instead of the source: every scenario field (config's field
-// table) and every summary.json key (records' key table), as text for the terminal or as a
-// markdown table. `maptr fields` prints them; docs/SCENARIO.md and docs/SUMMARY.md are
-// generated from them (a unit test fails when a committed file differs).
+// table), every summary.json key (records' key table) and every environment variable
+// (comm/environment.hpp), as text for the terminal or as a markdown table. `maptr fields` prints
+// them; docs/SCENARIO.md, docs/SUMMARY.md and docs/ENVIRONMENT.md are generated from them (a unit
+// test fails when a committed file differs).
 #include <string>
 
 namespace maptr::deploy::report {
@@ -12,6 +13,8 @@ namespace maptr::deploy::report {
 std::string scenario_reference(const std::string& prefix, bool markdown);
 /// The summary.json keys whose path starts with `prefix`. Markdown: the whole docs/SUMMARY.md.
 std::string summary_reference(const std::string& prefix, bool markdown);
+/// Every environment variable MAPTR reads. Markdown: the whole docs/ENVIRONMENT.md.
+std::string environment_reference(bool markdown);
 /// How many scenario fields (or summary keys) start with `prefix`.
 int scenario_field_count(const std::string& prefix);
 int summary_key_count(const std::string& prefix);

@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "comm/environment.hpp"
 #include "comm/shm_files.hpp"
 #include "comm/udp_ports.hpp"
 
@@ -60,8 +61,8 @@ ReplayProcess::ReplayProcess(const std::string& maptr, const std::string& run_di
                                    "--quiet"};
   std::vector<std::string> env_store;
   for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("MAPTR_TRANSPORT=", 0) != 0) env_store.push_back(*e);
-  env_store.push_back("MAPTR_TRANSPORT=udp");
+    if (std::string(*e).rfind(std::string(comm::kEnvTransport) + "=", 0) != 0) env_store.push_back(*e);
+  env_store.push_back(std::string(comm::kEnvTransport) + "=udp");
   std::vector<char*> argv, envp;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

@@ -1,14 +1,17 @@
-// The references a user reads instead of the source: docs/SCENARIO.md and docs/SUMMARY.md are
-// what `maptr fields --markdown` prints, every key of every example scenario is in the scenario
-// reference, and summary.json's key patterns match the keys a run writes.
+// The references a user reads instead of the source: docs/SCENARIO.md, docs/SUMMARY.md and
+// docs/ENVIRONMENT.md are what `maptr fields --markdown` prints, every key of every example
+// scenario is in the scenario reference, summary.json's key patterns match the keys a run writes,
+// and every environment variable the product names is the table's.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 
+#include "comm/environment.hpp"
 #include "config/scenario.hpp"
 #include "deploy/report/reference.hpp"
 #include "records/summary_fields.hpp"
@@ -32,6 +35,51 @@ TEST(Reference, TheCommittedSummaryReferenceIsTheKeyTable) {
   const std::string doc = std::string(MAPTR_SOURCE_DIR) + "/docs/SUMMARY.md";
   EXPECT_EQ(read(doc), maptr::deploy::report::summary_reference("", true))
       << "docs/SUMMARY.md differs from the key table: build/bin/maptr fields --summary --markdown > docs/SUMMARY.md";
+}
+
+TEST(Reference, TheCommittedEnvironmentReferenceIsTheTable) {
+  const std::string doc = std::string(MAPTR_SOURCE_DIR) + "/docs/ENVIRONMENT.md";
+  EXPECT_EQ(read(doc), maptr::deploy::report::environment_reference(true))
+      << "docs/ENVIRONMENT.md differs from comm/environment.hpp: "
+         "build/bin/maptr fields --environment --markdown > docs/ENVIRONMENT.md";
+}
+
+TEST(Reference, EveryEnvironmentVariableIsNamedOnlyInTheTable) {
+  // Outside comm/environment.hpp the product names a variable by the table's constant: a string
+  // literal MAPTR_... (or one of the other variables the table holds) anywhere else is a second
+  // declaration. MAPTR_TICK_WAKE is a DDS filter class, not a variable.
+  std::set<std::string> table;
+  for (const auto& v : maptr::comm::kEnvironment) table.insert(v.name);
+  const std::regex literal("\"(MAPTR_[A-Z0-9_]+|FASTRTPS_[A-Z0-9_]+|XDG_[A-Z_]+)");
+  const std::string root = MAPTR_SOURCE_DIR;
+  int files = 0;
+  std::set<std::string> seen;
+  for (auto it = std::filesystem::recursive_directory_iterator(root); it != std::filesystem::end(it); ++it) {
+    const std::string rel = std::filesystem::relative(it->path(), root).string();
+    if (it->is_directory() &&
+        (rel.rfind("build", 0) == 0 || rel == "tests" || rel == "tools" || rel == "docs" || rel[0] == '.' ||
+         rel.find("node_modules") != std::string::npos)) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    const std::string ext = it->path().extension().string();
+    if (!it->is_regular_file() || (ext != ".cpp" && ext != ".hpp" && ext != ".h")) continue;
+    ++files;
+    const std::string text = read(it->path().string());
+    for (std::sregex_iterator m(text.begin(), text.end(), literal), end; m != end; ++m) {
+      const std::string name = (*m)[1];
+      if (rel == "comm/environment.hpp") {
+        seen.insert(name);
+        continue;
+      }
+      if (name == "MAPTR_TICK_WAKE" && rel == "comm/tick_filter.hpp") continue;
+      ADD_FAILURE() << rel << " names \"" << name << "\" itself: use comm/environment.hpp's constant"
+                    << (table.count(name) ? "" : " (and add it to the table)");
+    }
+  }
+  EXPECT_GT(files, 100);
+  EXPECT_EQ(seen, table)
+      << "a constant of comm/environment.hpp is not in kEnvironment, or the other way round";
 }
 
 /// Every key path of a YAML node: maps joined with '.', a list's entries as "[]". A path the
