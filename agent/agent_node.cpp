@@ -5,6 +5,7 @@
 #include "agent/agent_input.hpp"
 #include "comm/follower.hpp"
 #include "comm/side.hpp"
+#include "config/core_configs.hpp"
 #include "config/scenario.hpp"
 
 namespace maptr::agent {
@@ -26,19 +27,6 @@ msg::AgentState to_msg(control::AgentState s) {
   return msg::AGENT_IDLE;
 }
 
-control::AgentConfig make_config(const config::Scenario& s) {
-  control::AgentConfig c;
-  c.motor = s.robot.motor;
-  c.driver = s.robot.driver;
-  c.pid = s.control.pid;
-  c.wheel_radius_m = s.robot.wheel_radius_m;
-  c.dt_s = s.dt();
-  c.group_hold_s = s.control.group_hold_s;
-  c.central_timeout_s = s.control.central_timeout_s;
-  c.stop_decel_mps2 = s.control.stop_decel_mps2;
-  return c;
-}
-
 /// The scenario's software faults and clears of agent `side`/`index`, at their ticks.
 std::vector<MisbehaviourEvent> misbehaviours(const config::Scenario& s, int side, int index) {
   std::vector<MisbehaviourEvent> out;
@@ -58,7 +46,7 @@ std::vector<MisbehaviourEvent> misbehaviours(const config::Scenario& s, int side
 }  // namespace
 
 AgentNode::AgentNode(const comm::ProcessArgs& args, int side, int index, std::shared_ptr<spdlog::logger> log)
-    : args_(args), side_(side), index_(index), log_(std::move(log)), core_(make_config(args.scenario), misbehaviours(args.scenario, side, index), side, index) {}
+    : args_(args), side_(side), index_(index), log_(std::move(log)), core_(config::agent_config(args.scenario), misbehaviours(args.scenario, side, index), side, index) {}
 
 int AgentNode::run() {
   comm::TickFollower follower(args_, msg::NODE_AGENT, log_);

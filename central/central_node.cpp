@@ -1,24 +1,12 @@
 #include "central/central_node.hpp"
 
 #include "comm/follower.hpp"
-#include "config/scenario.hpp"
+#include "config/core_configs.hpp"
 
 namespace maptr::central {
 
-namespace {
-control::CentralConfig make_config(const config::Scenario& s) {
-  control::CentralConfig c;
-  c.trajectory = s.trajectory;
-  c.dt_s = s.dt();
-  c.track_m = s.robot.track_m;
-  c.wheel_radius_m = s.robot.wheel_radius_m;
-  c.heading_gain_1_s = s.control.path_heading_gain_1_s;
-  return c;
-}
-}  // namespace
-
 CentralNode::CentralNode(const comm::ProcessArgs& args, std::shared_ptr<spdlog::logger> log)
-    : args_(args), log_(std::move(log)), core_(make_config(args.scenario)) {}
+    : args_(args), log_(std::move(log)), core_(config::central_config(args.scenario)) {}
 
 int CentralNode::run() {
   comm::TickFollower follower(args_, msg::NODE_CENTRAL, log_);

@@ -5,33 +5,12 @@
 #include <string>
 
 #include "comm/follower.hpp"
+#include "config/core_configs.hpp"
 #include "config/scenario.hpp"
 #include "group/group_wire.hpp"
 #include "records/ledger_file.hpp"
 
 namespace maptr::group {
-
-namespace {
-control::GroupConfig make_config(const config::Scenario& s) {
-  control::GroupConfig c;
-  c.robot = s.robot;
-  c.mode = s.mode == "all" ? control::GroupMode::kAll : control::GroupMode::kEnergyConscious;
-  c.dt_s = s.dt();
-  c.level2_period_s = s.control.level2_period_s;
-  c.level2_defer_s = s.control.level2_defer_s;
-  c.horizon = s.control.horizon;
-  c.horizon_step_s = s.control.horizon_step_s;
-  c.t_on_s = s.control.t_on_s;
-  c.thermal_limit_s = s.control.thermal_limit_s;
-  c.oracle = s.control.oracle;
-  c.fault_detection = s.control.fault_detection;
-  c.diagnosis.current_A = s.control.fault_current_A;
-  c.diagnosis.jitter_V = s.control.fault_jitter_V;
-  c.diagnosis.persistence_s = s.control.fault_persistence_s;
-  c.diagnosis.probation_s = s.control.fault_probation_s;
-  return c;
-}
-}  // namespace
 
 namespace {
 std::chrono::milliseconds level2_pause{0};
@@ -45,7 +24,7 @@ GroupNode::GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<sp
       log_(std::move(log)),
       ledger_path_(records::ledger_path(args.run_dir, side)),
       worker_(args.scenario.control.oracle, level2_pause),
-      core_(side, make_config(args.scenario),
+      core_(side, config::group_config(args.scenario),
             records::load_ledger(ledger_path_, args.scenario.robot.per_side()), &worker_) {}
 
 int GroupNode::run() {

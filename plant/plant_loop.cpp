@@ -1,16 +1,17 @@
 #include "plant/plant_loop.hpp"
 
-#include "comm/fleet_guid.hpp"
-#include "comm/lockstep.hpp"
-#include "comm/tick_filter.hpp"
-#include "config/scenario.hpp"
-#include "idl/rules.hpp"
-#include "plant/discovery_wait.hpp"
-
 #include <algorithm>
 #include <fstream>
 #include <thread>
 #include <tuple>
+
+#include "comm/fleet_guid.hpp"
+#include "comm/lockstep.hpp"
+#include "comm/tick_filter.hpp"
+#include "config/core_configs.hpp"
+#include "config/scenario.hpp"
+#include "idl/rules.hpp"
+#include "plant/discovery_wait.hpp"
 
 namespace maptr::plant {
 
@@ -25,28 +26,6 @@ int count(const std::vector<uint8_t>& m) {
   int n = 0;
   for (auto b : m) n += b ? 1 : 0;
   return n;
-}
-
-sim::PlantCoreConfig core_config(const config::Scenario& sc, const PlantNodeConfig& c) {
-  sim::PlantCoreConfig pc;
-  pc.robot = sc.robot;
-  pc.dt_s = sc.dt();
-  pc.trace_every = sc.trace_every;
-  pc.initial_discharge_mAh = sc.initial_discharge_mAh;
-  pc.stop_below_speed_pct = sc.stop_below_speed_pct;
-  pc.speed_lost_hold_s = c.speed_lost_hold_s;
-  pc.reached_band_pct = c.reached_band_pct;
-  pc.trajectory = sc.trajectory;
-  for (const auto& f : sc.faults) {
-    int side = 0, index = 0;
-    if (!config::is_agent_fault_action(f.action) || !config::parse_agent_name(f.target, side, index)) continue;
-    pc.agent_faults.push_back(
-        {config::first_tick_at(f.at_s, sc.dt()), side, index, f.action == "clear", f.mode, f.value});
-  }
-  // A detection needs the persistence time of residuals: one that ends within twice that after a
-  // clear is the cleared fault's.
-  pc.fault_grace_s = 2.0 * sc.control.fault_persistence_s + 2.0 * sc.dt();
-  return pc;
 }
 
 std::vector<double> fault_times(const std::vector<config::FaultSpec>& faults) {
@@ -68,7 +47,7 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
       per_side_(args.scenario.robot.per_side()),
       stop_(comm::stop_flag()),
       p_("plant", args.dds),
-      core_(core_config(args.scenario, c)),
+      core_(config::plant_core_config(args.scenario, c.speed_lost_hold_s, c.reached_band_pct)),
       membership_(per_side_, wall_ms_now),
       gate_(fault_times(args.scenario.faults), c.gate_timeout_s),
       barrier_(c.deadline_s(args.scenario.robot.agents), c.resend_s) {
