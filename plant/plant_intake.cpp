@@ -1,6 +1,6 @@
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <thread>
 
@@ -10,6 +10,7 @@
 #include "control/diagnosis.hpp"
 #include "model/kinematics.hpp"
 #include "plant/plant_loop.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::plant {
 
@@ -253,7 +254,8 @@ int PlantLoop::report(bool stopped) {
   in.declared_dead_by_deadline = declared_dead_;
   in.tick_timing_us = timing_.json();
   in.group_wear = wear_.json();
-  std::ofstream(run_dir_ + "/plant.json") << plant_report(core_, in, membership_.records()).dump(2) << "\n";
+  records::write_json_file(records::plant_results_path(run_dir_),
+                           plant_report(core_, in, membership_.records()));
   log_.info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", in.status, core_.tick(), core_.t(),
             wall);
   // Give the last Tick time to reach every reader before the participant goes away.

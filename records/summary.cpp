@@ -1,8 +1,9 @@
 #include "records/summary.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
+
+#include "records/run_files.hpp"
 
 namespace maptr::records {
 
@@ -25,16 +26,7 @@ double number_in(const json& j, const char* key) {
 }
 }  // namespace
 
-Summary Summary::read(const std::string& path) {
-  std::ifstream in(path);
-  json j;
-  try {
-    if (in) in >> j;
-  } catch (...) {
-    j = nullptr;
-  }
-  return Summary(j.is_object() ? j : json::object());
-}
+Summary Summary::read(const std::string& path) { return Summary(read_json_object(path)); }
 
 bool Summary::has_status() const {
   return j_.is_object() && j_.contains(k::kStatus) && j_[k::kStatus].is_string();

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "records/run_files.hpp"
+
 namespace maptr::deploy {
 
 namespace fs = std::filesystem;
@@ -44,13 +46,8 @@ bool wait_under_way(const std::string& run_dir, const std::atomic<bool>& done) {
 FleetMemory sample_memory(const std::string& run_dir, const std::atomic<bool>& done) {
   FleetMemory m;
   if (!wait_under_way(run_dir, done)) return m;
-  nlohmann::json fleet;
-  try {
-    std::ifstream(run_dir + "/fleet.json") >> fleet;
-  } catch (...) {
-    return m;
-  }
-  for (const auto& p : fleet["processes"]) {
+  const nlohmann::json fleet = records::read_json_object(records::fleet_file_path(run_dir));
+  for (const auto& p : fleet.value("processes", nlohmann::json::array())) {
     const long kb = pss_kB(p["pid"].get<long>());
     if (kb < 0) continue;
     m.total_pss_kB += kb;

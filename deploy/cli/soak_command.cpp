@@ -26,6 +26,7 @@
 #include "deploy/fleet/soak.hpp"
 #include "deploy/fleet/summary.hpp"
 #include "model/params.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy::cli {
 
@@ -98,7 +99,7 @@ FleetRun run_fleet(const std::string& bin, const std::string& yaml, const std::s
   }
   r.wall_s = since(t0);
   r.exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-  r.summary = fleet::read_json_object(dir + "/summary.json");
+  r.summary = records::read_json_object(records::summary_path(dir));
   return r;
 }
 

@@ -12,6 +12,7 @@
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/shm_segments.hpp"
 #include "deploy/fleet/summary.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy::cli {
 
@@ -32,7 +33,7 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 
 void sample_segments(pid_t launcher, const std::string& dir, std::set<std::string>& out) {
   std::vector<pid_t> pids = {launcher};
-  const nlohmann::json fleet = fleet::read_json_object(dir + "/fleet.json");
+  const nlohmann::json fleet = records::read_json_object(records::fleet_file_path(dir));
   if (fleet.contains("fleet_id"))
     for (pid_t p : pids_of_fleet(std::to_string(fleet.value("fleet_id", 0LL)))) pids.push_back(p);
   for (pid_t p : pids)
@@ -56,7 +57,7 @@ std::vector<pid_t> pids_of_fleet(const std::string& fleet_id) {
 }
 
 std::string check_leftovers(const std::string& run_dir) {
-  const nlohmann::json fleet = fleet::read_json_object(run_dir + "/fleet.json");
+  const nlohmann::json fleet = records::read_json_object(records::fleet_file_path(run_dir));
   if (!fleet.contains("fleet_id")) return "";  // the fleet never started
   const std::string id = std::to_string(fleet.value("fleet_id", 0LL));
   const auto t0 = Clock::now();

@@ -8,6 +8,7 @@
 
 #include "deploy/experiments/isolated_launch.hpp"
 #include "deploy/report/gnuplot.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy {
 
@@ -40,7 +41,7 @@ void Experiment::straight(config::Scenario& s, double speed, double duration) {
 }
 
 bool Experiment::reusable(const Run& r, const config::Scenario& s) const {
-  const auto old = records::Summary::read(r.dir + "/summary.json");
+  const auto old = records::Summary::read(records::summary_path(r.dir));
   return old.has_status() && old.status().rfind("aborted", 0) != 0 &&
          file_text(r.dir + "/scenario.yaml") == config::to_yaml(s) && fs::exists(r.dir + "/trace.csv");
 }
@@ -78,7 +79,7 @@ Run Experiment::run(const std::string& id, const std::string& label, config::Sce
     return r;
   }
   if (reusable(r, s)) {
-    r.summary = records::Summary::read(r.dir + "/summary.json");
+    r.summary = records::Summary::read(records::summary_path(r.dir));
     r.reused = true;
   } else {
     launch_with_retry(r, head);

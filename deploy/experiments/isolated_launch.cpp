@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "deploy/fleet/launcher.hpp"
+#include "records/run_files.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::deploy {
@@ -55,8 +56,8 @@ void on_stop_signal(int) { g_stop = 1; }
     launch(lo, *log);
     log->flush();
   } catch (const std::exception& e) {
-    std::ofstream(l.run_dir + "/summary.json")
-        << json{{"status", std::string("aborted: ") + e.what()}}.dump(2);
+    records::write_json_file(records::summary_path(l.run_dir),
+                             json{{"status", std::string("aborted: ") + e.what()}});
     rc = 1;
   }
   std::fflush(nullptr);
@@ -93,7 +94,7 @@ json launch_isolated(const IsolatedLaunch& l, const LaunchWatcher& watch) {
   const int st = wait_child(pid);
   done.store(true);
   if (watcher.joinable()) watcher.join();
-  const records::Summary sum = records::Summary::read(l.run_dir + "/summary.json");
+  const records::Summary sum = records::Summary::read(records::summary_path(l.run_dir));
   if (sum.has_status()) return sum.data();
   const std::string why = WIFSIGNALED(st) ? "the launcher died of signal " + std::to_string(WTERMSIG(st))
                                           : "the launcher exited with " + std::to_string(WEXITSTATUS(st));

@@ -17,6 +17,7 @@
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/secure_domain.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -206,9 +207,7 @@ void Fleet::write_fleet() const {
         {{"name", c.name}, {"pid", c.pid}, {"external", c.external}, {"participant_id", c.base_id}});
     if (c.host >= 0) fleet["processes"].back()["host"] = config::host_name(c.host);
   }
-  std::ofstream(o_.run_dir + "/fleet.json.tmp") << fleet.dump(2) << "\n";
-  // Readers never see half a file.
-  std::filesystem::rename(o_.run_dir + "/fleet.json.tmp", o_.run_dir + "/fleet.json");
+  records::write_json_file(records::fleet_file_path(o_.run_dir), fleet);
 }
 
 void Fleet::spawn_child(Child& c) {
@@ -371,7 +370,7 @@ nlohmann::json Fleet::summary() {
   rec_.launcher_rejected = 0;
   for (const auto& [kind, n] : kinds) rec_.launcher_rejected += n;
   const nlohmann::json s = build_summary(sc_, MAPTR_SOURCE_DIR, rec_, o_.run_dir, kids_);
-  std::ofstream(o_.run_dir + "/summary.json") << s.dump(2) << "\n";
+  records::write_json_file(records::summary_path(o_.run_dir), s);
   log_.info("run ended: {}", s.value("status", ""));
   return s;
 }

@@ -7,6 +7,7 @@
 #include "deploy/fleet/fault_schedule.hpp"
 #include "deploy/fleet/fleet.hpp"
 #include "deploy/report/run_plot.hpp"
+#include "records/run_files.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -105,7 +106,7 @@ nlohmann::json launch(const LaunchOptions& o, spdlog::logger& log) {
     s = launch_once(again, log);
     s["discovery_retry"] = {{"first_status", first}, {"first_domain", o.domain}, {"domain", again.domain},
                             {"first_attempt", "first-attempt/"}};
-    std::ofstream(o.run_dir + "/summary.json") << s.dump(2) << "\n";
+    records::write_json_file(records::summary_path(o.run_dir), s);
   }
   // The picture of the run (run.png), from the files just written.
   report::draw_run_plot(o.run_dir);

@@ -12,6 +12,7 @@
 #include "deploy/fleet/membership_events.hpp"
 #include "model/params.hpp"
 #include "records/level2_log.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -85,16 +86,6 @@ std::string final_status(const std::string& launch_status, const nlohmann::json&
   return plant.value("status", "unknown");
 }
 
-nlohmann::json read_json_object(const std::string& path) {
-  nlohmann::json j;
-  std::ifstream in(path);
-  if (in) try {
-      in >> j;
-    } catch (...) {
-    }
-  return j.is_object() ? j : nlohmann::json::object();
-}
-
 nlohmann::json level2_stats(const std::string& run_dir) {
   nlohmann::json out = nlohmann::json::object();
   for (int side = 0; side < 2; ++side) {
@@ -135,7 +126,7 @@ nlohmann::json processes_json(const std::vector<Child>& kids) {
 
 nlohmann::json build_summary(const config::Scenario& sc, const std::string& project_root, const RunRecord& r,
                              const std::string& run_dir, const std::vector<Child>& kids) {
-  const nlohmann::json plant = read_json_object(run_dir + "/plant.json");
+  const nlohmann::json plant = records::read_json_object(records::plant_results_path(run_dir));
   nlohmann::json s;
   s["scenario"] = sc.name;
   s["scenario_file"] = scenario_file(sc.source, project_root);

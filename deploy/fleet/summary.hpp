@@ -51,9 +51,6 @@ nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded, 
 std::string final_status(const std::string& launch_status, const nlohmann::json& plant,
                          const Child& plant_child);
 
-/// A JSON object from a file; an empty object if the file is missing or not an object.
-nlohmann::json read_json_object(const std::string& path);
-
 /// Level-2 figures from the groups' level2-<side>.csv (records::read_level2_log): decisions,
 /// infeasible decisions, Ipopt solve time (median, p95, max) and, where the oracle ran on a
 /// solved problem, how often Ipopt's integer differed. A side without a log is absent; a side

@@ -8,6 +8,7 @@
 
 #include "config/scenario.hpp"
 #include "deploy/report/gnuplot.hpp"
+#include "records/run_files.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::deploy::report {
@@ -324,7 +325,7 @@ bool draw_run_plot(const std::string& run_dir) {
       return false;
     }
   const config::Scenario sc = config::load_scenario(run_dir + "/scenario.yaml");
-  const records::Summary s = records::Summary::read(run_dir + "/summary.json");
+  const records::Summary s = records::Summary::read(records::summary_path(run_dir));
   std::ostringstream text;
   text << std::ifstream(run_dir + "/trace.csv").rdbuf();
   const TracePath path = scan_trace(text.str());

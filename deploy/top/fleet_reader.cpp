@@ -14,6 +14,7 @@
 #include "comm/udp_ports.hpp"
 #include "config/scenario.hpp"
 #include "idl/maptrPubSubTypes.h"
+#include "records/run_files.hpp"
 
 namespace maptr::top {
 
@@ -99,7 +100,7 @@ double steady_now_s() {
 }
 
 FleetCoordinates read_fleet(const std::string& run_dir) {
-  const std::string path = run_dir + "/fleet.json";
+  const std::string path = records::fleet_file_path(run_dir);
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": no such file (not a run folder, or the fleet has not started)");
   nlohmann::json j;

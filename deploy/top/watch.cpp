@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "deploy/top/run_events.hpp"
+#include "records/run_files.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::top {
@@ -22,7 +23,7 @@ bool pid_alive(int pid) { return pid > 0 && (kill(pid, 0) == 0 || errno == EPERM
 bool run_is_live(const std::string& run_dir) {
   try {
     return pid_alive(read_fleet(run_dir).launcher_pid) &&
-           !records::Summary::read(run_dir + "/summary.json").has_status();
+           !records::Summary::read(records::summary_path(run_dir)).has_status();
   } catch (const std::exception&) {
     return false;
   }
@@ -66,12 +67,12 @@ Watch::Watch(FleetCoordinates c, const ReplayRequest& r)
       reader_(std::make_unique<FleetReader>(c_)),
       replay_(std::make_unique<ReplayProcess>(r.maptr, c_.info.run_dir, r.domain, r.rate)) {
   // A replay shows the run's own record of its events, as the replayed ticks reach them.
-  const records::Summary s = records::Summary::read(c_.info.run_dir + "/summary.json");
+  const records::Summary s = records::Summary::read(records::summary_path(c_.info.run_dir));
   view_.set_recorded_events(recorded_events(s.data(), s.number_or("tick_hz", 100.0)));
 }
 
 void Watch::end_run() {
-  const records::Summary s = records::Summary::read(c_.info.run_dir + "/summary.json");
+  const records::Summary s = records::Summary::read(records::summary_path(c_.info.run_dir));
   if (s.has_status())
     view_.on_summary(s.status(), s.end_reason());
   else
@@ -95,7 +96,8 @@ void Watch::poll() {
   if (reader_) reader_->drain_into(view_);
   view_.observe(steady_now_s());
   if (ended_) return;
-  if (records::Summary::read(dir + "/summary.json").has_status() || !pid_alive(c_.launcher_pid)) end_run();
+  if (records::Summary::read(records::summary_path(dir)).has_status() || !pid_alive(c_.launcher_pid))
+    end_run();
 }
 
 std::string Watch::replay_failure() const {
