@@ -48,7 +48,7 @@ bool summary_path_matches(const std::string& pattern, const std::string& path) {
 
 namespace {
 
-/// The run as a whole (deploy/fleet/summary.cpp).
+/// The run as a whole (deploy/fleet/summary_build.cpp).
 std::vector<SummaryField> run_keys() {
   return {
       {"status", "text", "",

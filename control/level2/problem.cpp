@@ -51,7 +51,7 @@ double soft_clamp(double x, double lo, double hi, double eps) {
 /// One classical RK4 step of length dt on (v, w), accel(v, w) giving (dv/dt, dw/dt) and k1 =
 /// accel(v, w) given (the caller has the state's forces already).
 template <typename Accel>
-void rk4_step(const Accel& accel, const BodyVelocity& k1, double dt, double& v, double& w) {
+void horizon_rk4_step(const Accel& accel, const BodyVelocity& k1, double dt, double& v, double& w) {
   const BodyVelocity k2 = accel(v + 0.5 * dt * k1.v_x, w + 0.5 * dt * k1.w);
   const BodyVelocity k3 = accel(v + 0.5 * dt * k2.v_x, w + 0.5 * dt * k2.w);
   const BodyVelocity k4 = accel(v + dt * k3.v_x, w + dt * k3.w);
@@ -146,7 +146,7 @@ double horizon_efficiency(const Level2Problem& p, double n) {
       auto accel = [&](double vv, double ww) {
         return accel_from(body_resistances(rb, vv, ww), to_wheel_rates({vv, ww}, a, r));
       };
-      rk4_step(accel, accel_from(resist, ph), dt, v, w);
+      horizon_rk4_step(accel, accel_from(resist, ph), dt, v, w);
     }
     total += eta_sum / substeps;
   }

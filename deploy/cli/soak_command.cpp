@@ -24,7 +24,7 @@
 #include "deploy/fleet/launcher.hpp"
 #include "deploy/fleet/shm_segments.hpp"
 #include "deploy/fleet/soak.hpp"
-#include "deploy/fleet/summary.hpp"
+#include "deploy/fleet/summary_build.hpp"
 #include "model/params.hpp"
 #include "records/run_files.hpp"
 

@@ -11,7 +11,7 @@
 #include "comm/environment.hpp"
 #include "comm/shm_files.hpp"
 #include "deploy/fleet/shm_segments.hpp"
-#include "deploy/fleet/summary.hpp"
+#include "deploy/fleet/summary_build.hpp"
 #include "records/run_files.hpp"
 
 namespace maptr::deploy::cli {

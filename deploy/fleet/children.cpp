@@ -2,7 +2,7 @@
 
 #include "comm/environment.hpp"
 #include "deploy/fleet/hosts.hpp"
-#include "deploy/fleet/zygote.hpp"
+#include "deploy/fleet/zygote_client.hpp"
 
 #include <fcntl.h>
 #include <pthread.h>
@@ -153,7 +153,7 @@ void spawn(Child& c, const std::string& run_dir, const Environment& env, int par
   std::vector<std::string> command = {c.binary};
   command.insert(command.end(), c.args.begin(), c.args.end());
   pid_t pid = -1;
-  // An agent on this machine is forked from the zygote when there is one (deploy/fleet/zygote.hpp);
+  // An agent on this machine is forked from the zygote when there is one (deploy/fleet/zygote_client.hpp);
   // if the zygote is gone, it is started as any other child.
   if (zygote && c.prefix.empty() && zygote->serves(c.binary)) pid = zygote->fork_copy(command, env_list, err_path);
   if (pid <= 0) {

@@ -66,7 +66,7 @@ class Zygote;
 
 /// Starts c (again): its environment is the launcher's with env, c.host_env and
 /// MAPTR_PARTICIPANT_ID; with a command prefix (a host), through it (deploy/fleet/hosts.hpp).
-/// With a zygote of c's binary (deploy/fleet/zygote.hpp), forked from it, else clone and exec.
+/// With a zygote of c's binary (deploy/fleet/zygote_client.hpp), forked from it, else clone and exec.
 /// Throws std::runtime_error if the start fails.
 void spawn(Child& c, const std::string& run_dir, const Environment& env, int participant_id,
            Zygote* zygote = nullptr);

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "deploy/fleet/zygote.hpp"
+#include "deploy/fleet/zygote_client.hpp"
 
 namespace maptr::deploy::fleet {
 

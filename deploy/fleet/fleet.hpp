@@ -25,9 +25,9 @@
 #include "deploy/fleet/ready_check.hpp"
 #include "deploy/fleet/registry.hpp"
 #include "deploy/fleet/stall_watch.hpp"
-#include "deploy/fleet/summary.hpp"
+#include "deploy/fleet/summary_build.hpp"
 #include "deploy/fleet/waves.hpp"
-#include "deploy/fleet/zygote.hpp"
+#include "deploy/fleet/zygote_client.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "recorder/recorder.hpp"
 

@@ -1,4 +1,4 @@
-// The launcher's children and the run summary (deploy/fleet/children.hpp, summary.hpp).
+// The launcher's children and the run summary (deploy/fleet/children.hpp, summary_build.hpp).
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "deploy/fleet/children.hpp"
-#include "deploy/fleet/summary.hpp"
+#include "deploy/fleet/summary_build.hpp"
 
 using namespace maptr::deploy::fleet;
 

@@ -1,4 +1,4 @@
-#include "deploy/fleet/summary.hpp"
+#include "deploy/fleet/summary_build.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "plant/report.hpp"
+#include "plant/run_outcome.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "plant/run_files.hpp"
+#include "plant/tick_records.hpp"
 
 #include <optional>
 

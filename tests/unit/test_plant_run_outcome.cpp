@@ -1,10 +1,10 @@
-// Plant report (plant/report.hpp): the run status rules, the end reason, the tick-timing
+// The run's outcome (plant/run_outcome.hpp): the run status rules, the end reason, the tick-timing
 // statistics and the keys of plant.json.
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "plant/report.hpp"
+#include "plant/run_outcome.hpp"
 
 namespace {
 

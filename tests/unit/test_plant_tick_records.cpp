@@ -1,4 +1,4 @@
-// Plant run files (plant/run_files.hpp): the CSV trace and assignment rows a tick produces.
+// The plant's tick records (plant/tick_records.hpp): the CSV trace and assignment rows a tick produces.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "plant/run_files.hpp"
+#include "plant/tick_records.hpp"
 
 namespace {
 

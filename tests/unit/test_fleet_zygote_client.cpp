@@ -17,7 +17,7 @@
 
 #include "comm/zygote.hpp"
 #include "deploy/fleet/children.hpp"
-#include "deploy/fleet/zygote.hpp"
+#include "deploy/fleet/zygote_client.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "deploy/fleet/zygote.hpp"
+#include "deploy/fleet/zygote_client.hpp"
 
 #include <sys/prctl.h>
 #include <sys/socket.h>
