@@ -56,6 +56,7 @@ TEST(ReportTable, WrittenThenReadBack) {
   auto cols = t.cols;
   cols.push_back({"missing", "m", 1});
   EXPECT_THROW(read_table_csv(path, cols), maptr::records::RecordError);
+  std::filesystem::remove(path);
 }
 
 TEST(ReportTable, CsvOnlyAndMarkdownOnlyColumns) {
