@@ -2,7 +2,9 @@
 // The plant node's thresholds (none of them is a scenario field): the barrier's last-resort
 // deadline, the bounds a sample must respect, the fault gate's waits and the run status bands.
 #include <chrono>
+#include <vector>
 
+#include "config/settings.hpp"
 #include "sim/speed_band.hpp"
 
 namespace maptr::plant {
@@ -46,5 +48,8 @@ struct PlantNodeConfig {
   /// The barrier's deadline for a fleet of n agents, s.
   double deadline_s(int n_agents) const { return deadline_base_s + deadline_per_agent_s * n_agents; }
 };
+
+/// The plant's settings (a default PlantNodeConfig), for `maptr fields --settings`.
+std::vector<config::Setting> plant_settings();
 
 }  // namespace maptr::plant

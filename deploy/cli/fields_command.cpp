@@ -17,10 +17,19 @@ CLI::App* add_fields_command(CLI::App& app, FieldsArgs& a) {
        "--environment", a.environment,
        "the environment variables MAPTR reads (who sets each, its values) instead of the scenario's fields")
       ->excludes(summary);
+  c->add_flag(
+       "--settings", a.settings,
+       "the fixed settings of the processes that no scenario field sets (launcher, plant, group, Level 2)")
+      ->excludes(summary)
+      ->excludes("--environment");
   return c;
 }
 
 int cmd_fields(const FieldsArgs& a) {
+  if (a.settings) {
+    std::cout << report::settings_reference(report::all_settings(), a.markdown);
+    return 0;
+  }
   if (a.environment) {
     std::cout << report::environment_reference(a.markdown);
     return 0;

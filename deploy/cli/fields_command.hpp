@@ -12,6 +12,7 @@ struct FieldsArgs {
   bool markdown = false;
   bool summary = false;
   bool environment = false;
+  bool settings = false;
 };
 
 CLI::App* add_fields_command(CLI::App& app, FieldsArgs& a);

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <vector>
+
+#include "config/settings.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -98,5 +101,8 @@ struct FleetConfig {
     return restart_ready_base_s + restart_ready_per_agent_s * agents;
   }
 };
+
+/// The launcher's settings (a default FleetConfig), for `maptr fields --settings`.
+std::vector<config::Setting> fleet_settings();
 
 }  // namespace maptr::deploy::fleet

@@ -5,6 +5,9 @@
 // them; docs/SCENARIO.md, docs/SUMMARY.md and docs/ENVIRONMENT.md are generated from them (a unit
 // test fails when a committed file differs).
 #include <string>
+#include <vector>
+
+#include "config/settings.hpp"
 
 namespace maptr::deploy::report {
 
@@ -15,6 +18,10 @@ std::string scenario_reference(const std::string& prefix, bool markdown);
 std::string summary_reference(const std::string& prefix, bool markdown);
 /// Every environment variable MAPTR reads. Markdown: the whole docs/ENVIRONMENT.md.
 std::string environment_reference(bool markdown);
+/// Every setting outside the scenario: the launcher's, the plant's, the cores'.
+std::vector<config::Setting> all_settings();
+/// The settings outside the scenario (config/settings.hpp). Markdown: the whole docs/SETTINGS.md.
+std::string settings_reference(const std::vector<config::Setting>& settings, bool markdown);
 /// How many scenario fields (or summary keys) start with `prefix`.
 int scenario_field_count(const std::string& prefix);
 int summary_key_count(const std::string& prefix);

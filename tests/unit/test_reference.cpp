@@ -10,6 +10,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "comm/environment.hpp"
 #include "config/scenario.hpp"
@@ -80,6 +81,49 @@ TEST(Reference, EveryEnvironmentVariableIsNamedOnlyInTheTable) {
   EXPECT_GT(files, 100);
   EXPECT_EQ(seen, table)
       << "a constant of comm/environment.hpp is not in kEnvironment, or the other way round";
+}
+
+TEST(Reference, TheCommittedSettingsReferenceIsTheLists) {
+  const std::string doc = std::string(MAPTR_SOURCE_DIR) + "/docs/SETTINGS.md";
+  EXPECT_EQ(read(doc), maptr::deploy::report::settings_reference(maptr::deploy::report::all_settings(), true))
+      << "docs/SETTINGS.md differs from the settings lists: "
+         "build/bin/maptr fields --settings --markdown > docs/SETTINGS.md";
+}
+
+/// The data members of `name` in the header `path` (read as text: "TYPE NAME = ..." or "{...}").
+std::set<std::string> members(const std::string& path, const std::string& name) {
+  const std::string text = read(std::string(MAPTR_SOURCE_DIR) + "/" + path);
+  const std::size_t from = text.find("struct " + name + " {");
+  const std::size_t to = text.find("\n};", from);
+  EXPECT_NE(from, std::string::npos) << path << " has no struct " << name;
+  std::set<std::string> out;
+  if (from == std::string::npos) return out;
+  const std::string body = text.substr(from, to - from);
+  const std::regex member(
+      R"(\n\s+(?:double|int|bool|std::size_t|std::chrono::milliseconds)\s+([a-z_0-9]+)\s*[={])");
+  for (std::sregex_iterator m(body.begin(), body.end(), member), end; m != end; ++m) out.insert((*m)[1]);
+  return out;
+}
+
+TEST(Reference, EverySettingOfTheLaunchersAndThePlantsStructsIsListed) {
+  std::set<std::string> listed;
+  for (const auto& s : maptr::deploy::report::all_settings()) {
+    EXPECT_TRUE(listed.insert(s.name).second) << s.name << " listed twice";
+    EXPECT_FALSE(s.value.empty()) << s.name;
+    EXPECT_FALSE(s.meaning.empty()) << s.name;
+  }
+  const std::tuple<const char*, const char*, const char*> structs[] = {
+      {"deploy/fleet/config.hpp", "FleetConfig", "launcher."},
+      {"plant/plant_config.hpp", "PlantNodeConfig", "plant."},
+      {"control/level2/solver.hpp", "Level2SolverConfig", "level2."}};
+  std::size_t seen = 0;
+  for (const auto& [path, name, prefix] : structs)
+    for (const auto& m : members(path, name)) {
+      ++seen;
+      EXPECT_TRUE(listed.count(prefix + m))
+          << name << "::" << m << " (" << path << ") is not in maptr fields --settings";
+    }
+  EXPECT_GT(seen, 40u);  // the scan found the structs' members
 }
 
 /// Every key path of a YAML node: maps joined with '.', a list's entries as "[]". A path the

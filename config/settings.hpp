@@ -1,0 +1,29 @@
+#pragma once
+// The settings outside the scenario: fixed thresholds of the processes (the launcher's waits and
+// waves, the plant's bounds and deadlines, the group core's cruise band, the Level-2 solver's
+// tolerances). Each struct that holds them keeps its values; beside it, a function lists them as
+// Settings, so that `maptr fields --settings` shows what a run runs with (docs/SETTINGS.md).
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace maptr::config {
+
+struct Setting {
+  std::string name;   ///< "<owner>.<field>", e.g. "plant.resend_s"
+  std::string value;  ///< the value a run uses, as text
+  std::string unit;   ///< "" for none
+  std::string meaning;
+};
+
+/// A value as a person reads it: a number in its shortest exact form, a duration in ms.
+std::string setting_value(double v);
+std::string setting_value(int v);
+std::string setting_value(bool v);
+std::string setting_value(std::chrono::milliseconds v);
+
+/// The settings of the cores that are not scenario fields: the group core's cruise band and the
+/// Level-2 solver's (core_configs.cpp).
+std::vector<Setting> core_settings();
+
+}  // namespace maptr::config
