@@ -8,6 +8,7 @@
 
 #include "deploy/fleet/control_fifo.hpp"
 #include "deploy/fleet/plant_clock.hpp"
+#include "tests/unit/unit_temp_dir.hpp"
 
 using namespace maptr::deploy::fleet;
 
@@ -47,7 +48,8 @@ TEST(FleetControlLines, UnknownCommandsAndBlankLinesAreInvalid) {
 }
 
 TEST(FleetControlFifo, CommandSentToARunDirIsRead) {
-  const std::string dir = ::testing::TempDir() + "/fleet_fifo";
+  const maptr::testing::UnitTempDir tmp("fleet_fifo");
+  const std::string dir = tmp.path();
   std::filesystem::create_directories(dir);
   EXPECT_THROW(maptr::deploy::send_command(dir, "kill", "L1"), std::runtime_error) << "no reader yet";
   {

@@ -9,6 +9,7 @@
 #include "deploy/fleet/fault_analysis.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
 #include "records/trace.hpp"
+#include "tests/unit/unit_temp_dir.hpp"
 
 using maptr::config::FaultSpec;
 using namespace maptr::deploy;
@@ -166,8 +167,9 @@ TEST(FleetChaos, SameSeedSameScheduleOnlyValidTargets) {
 namespace {
 /// A trace at 10 Hz, wheel radius 0.1 m, reference 10 rad/s (1 m/s); the speed drops to
 /// 0.9 m/s from t = 2.0 to t = 2.5 s (10 % error), else exact.
-std::string synthetic_trace() {
-  const std::string path = ::testing::TempDir() + "/fleet_trace.csv";
+/// Written into `dir`; returns its path.
+std::string synthetic_trace(const maptr::testing::UnitTempDir& dir) {
+  const std::string path = dir.path() + "/fleet_trace.csv";
   maptr::records::TraceWriter out(path);
   for (int k = 0; k <= 50; ++k) {
     maptr::records::TraceRow row;
@@ -182,7 +184,8 @@ std::string synthetic_trace() {
 }  // namespace
 
 TEST(FleetFaultAnalysis, DetectionAndRecoveryWithinTheBand) {
-  const std::string trace = synthetic_trace();
+  const maptr::testing::UnitTempDir tmp("fleet_trace");
+  const std::string trace = synthetic_trace(tmp);
   nlohmann::json failures =
       nlohmann::json::array({{{"target", "L1"}, {"action", "kill"}, {"at_s", 1.95}, {"wall_ms", 1000.0}},
                              {{"target", "L1"}, {"action", "restart"}, {"at_s", 4.0}, {"wall_ms", 3000.0}}});
@@ -202,7 +205,8 @@ TEST(FleetFaultAnalysis, DetectionAndRecoveryWithinTheBand) {
 }
 
 TEST(FleetFaultAnalysis, UndetectedAndUnrecoveredAreNull) {
-  const std::string trace = synthetic_trace();
+  const maptr::testing::UnitTempDir tmp("fleet_trace");
+  const std::string trace = synthetic_trace(tmp);
   nlohmann::json failures = nlohmann::json::array({{{"target", "R0"}, {"action", "kill"}, {"at_s", 2.0}}});
   analyse_faults(failures, nlohmann::json::array(), trace, 0.1, /*recovery_band_pct=*/5.0);
   EXPECT_TRUE(failures[0]["detected_s"].is_null());
@@ -218,7 +222,8 @@ TEST(FleetFaultAnalysis, UndetectedAndUnrecoveredAreNull) {
 TEST(FleetFaultAnalysis, ABrokenTraceLeavesTheFaultUnanalysed) {
   // A trace without the reference columns cannot give a speed error: the analysis reports no
   // recovery instead of failing the summary.
-  const std::string path = ::testing::TempDir() + "/fleet_trace_broken.csv";
+  const maptr::testing::UnitTempDir tmp("fleet_trace_broken");
+  const std::string path = tmp.path() + "/fleet_trace_broken.csv";
   std::ofstream(path) << "tick,t_s,v_x_mps\n0,0.0,1.0\n1,0.1,1.0\n";
   nlohmann::json failures =
       nlohmann::json::array({{{"target", "L1"}, {"action", "kill"}, {"at_s", 0.0}, {"wall_ms", 0.0}}});

@@ -8,6 +8,7 @@
 
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/summary_build.hpp"
+#include "tests/unit/unit_temp_dir.hpp"
 
 using namespace maptr::deploy::fleet;
 
@@ -51,7 +52,8 @@ TEST(FleetSummary, StatusRules) {
 }
 
 TEST(FleetSummary, ExitCodeAndSignalOfChildren) {
-  const std::string dir = ::testing::TempDir() + "/fleet_children";
+  const maptr::testing::UnitTempDir tmp("fleet_children");
+  const std::string dir = tmp.path();
   const Child ok = run_shell("exit 0", dir);
   EXPECT_EQ(ok.exit_code, 0);
   EXPECT_EQ(ok.signal, 0);
@@ -78,7 +80,8 @@ TEST(FleetSummary, ExitCodeAndSignalOfChildren) {
 }
 
 TEST(FleetSummary, AnEndIsDescribedWithTheLastCriticalOrErrorLineOfTheLog) {
-  const std::string dir = ::testing::TempDir() + "/fleet_describe_end";
+  const maptr::testing::UnitTempDir tmp("fleet_describe_end");
+  const std::string dir = tmp.path();
   std::filesystem::create_directories(dir + "/logs");
   {
     std::ofstream log(dir + "/logs/group-L.log");
@@ -105,7 +108,8 @@ TEST(FleetSummary, ParticipantIdsCycleThroughWindows) {
 }
 
 TEST(FleetSummary, SummaryOfARunFromItsFiles) {
-  const std::string dir = ::testing::TempDir() + "/fleet_summary";
+  const maptr::testing::UnitTempDir tmp("fleet_summary");
+  const std::string dir = tmp.path();
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/plant.json") << R"({"status":"ok","sim_time_s":20.0,"ticks":2000,"distance_m":10.0,
@@ -140,7 +144,8 @@ TEST(FleetSummary, SummaryOfARunFromItsFiles) {
 }
 
 TEST(FleetSummary, RejectedSamplesByProcessKindAndReadiness) {
-  const std::string dir = ::testing::TempDir() + "/fleet_summary_rejects";
+  const maptr::testing::UnitTempDir tmp("fleet_summary_rejects");
+  const std::string dir = tmp.path();
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/plant.json") << R"({"status":"ok","rejected_by_process":{"plant":7,"L0":2},
@@ -162,7 +167,8 @@ TEST(FleetSummary, RejectedSamplesByProcessKindAndReadiness) {
 }
 
 TEST(FleetSummary, ABrokenLevel2LogIsReportedWithoutDecisions) {
-  const std::string dir = ::testing::TempDir() + "/fleet_summary_broken_l2";
+  const maptr::testing::UnitTempDir tmp("fleet_summary_broken_l2");
+  const std::string dir = tmp.path();
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/level2-L.csv") << "t_s,n_live,status\n1,8,1\n";  // columns missing
