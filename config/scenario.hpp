@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "control/central_core.hpp"
+#include "control/group_core.hpp"
+#include "control/level1/agent_core.hpp"
 #include "control/trajectory.hpp"
 #include "model/params.hpp"
 
@@ -32,26 +35,11 @@ constexpr std::size_t kMaxNameLength = 64;
 /// Values (and unknown keys) are quoted in error messages up to this many bytes, then "…".
 constexpr std::size_t kMaxQuotedChars = 80;
 
-struct ControlConfig {
-  model::PidParams pid;
-  double level2_period_s = 1.0;    ///< Level-2 decision period, s (paper: 1 Hz)
-  double level2_defer_s = 0.1;     ///< s from a Level-2 decision's inputs (tick k) to its use
-  int horizon = 10;                ///< Level-2 horizon, steps (paper: 10)
-  double horizon_step_s = 0.1;     ///< Level-2 horizon step, s
-  double t_on_s = 100.0;           ///< Level-3 period T_ON, s
-  double thermal_limit_s = 600.0;  ///< max continuous active time of an agent, s
-  bool oracle = false;             ///< also run the exhaustive Level-2 search and report it
-  double group_hold_s = 1.0;       ///< agents hold the last assignment this long without their group, s
-  double central_timeout_s = 1.0;  ///< agents ramp to a stop after this long without central, s
-  double stop_decel_mps2 = 2.0;    ///< deceleration of that ramp, m/s^2
-  double path_heading_gain_1_s = 2.0;  ///< central's heading gain K (control/central_core.hpp), 1/s
-  double path_tolerance_m = 0.5;   ///< a run whose cross-track error exceeds this is degraded, m
-  // Fault detection by the groups (control/diagnosis.hpp).
-  bool fault_detection = true;      ///< the plant publishes the drive's measurements; groups isolate faulty agents
-  double fault_current_A = 0.01;    ///< |measured - model| or |reported - model| beyond this is a residual, A
-  double fault_jitter_V = 0.5;      ///< median |voltage step apart from its side's| beyond this, V
-  double fault_persistence_s = 0.1; ///< a residual must last this long to flag the agent, s
-  double fault_probation_s = 10.0;  ///< an isolated agent is let back after this long (doubled at each relapse), s
+/// The `control` section: each core's tuning, declared in the core's header with its defaults
+/// (a core takes its part whole: config/core_configs.cpp), and the plant's path check. The
+/// table (scenario_fields.cpp) gives every field its YAML path control.NAME, range and meaning.
+struct ControlConfig : control::AgentTuning, control::GroupTuning, control::CentralTuning {
+  double path_tolerance_m = 0.5;  ///< a run whose cross-track error exceeds this is degraded, m
 };
 
 struct FaultSpec {

@@ -134,12 +134,8 @@ void Scenario::validate() const {
   const Context c{source.empty() ? std::string("scenario") : source};
   check_record(scenario_table(), *this, "", c);
   check_driver(*this, c);
-  try {
-    robot.validate();
-    control.pid.validate();
-  } catch (const model::ParamError& e) {
-    throw ScenarioError(c.source + ": " + e.what());
-  }
+  if (control.pid.kp + control.pid.ki <= 0.0)
+    c.fail("control.ki", model::param_value(control.pid.ki), "control.kp and control.ki cannot both be zero");
   if (control.level2_period_s < dt())
     c.fail("control.level2_period_s", model::param_value(control.level2_period_s),
            "must be at least one tick");

@@ -15,7 +15,7 @@ CentralOutput CentralCore::step(const CentralInput& in) const {
   o.segment = ref.segment;
   if (ref.v > 0.0) {
     const Projection p = path_.project(in.pose, ref.s + c_.search_ahead_m);
-    const double k = c_.heading_gain_1_s;
+    const double k = c_.path_heading_gain_1_s;
     const double lookahead = std::max(4.0 * std::fabs(in.v_x) / k, c_.min_lookahead_m);
     const double wanted = p.on_path.theta - std::atan(p.cross_track / lookahead);
     const double correction =

@@ -37,10 +37,10 @@ const char* diagnosis_name(Diagnosis d) {
 
 SideDiagnosis::SideDiagnosis(int per_side, const DiagnosisConfig& c)
     : c_(c),
-      need_(std::max(1, static_cast<int>(std::lround(c.persistence_s / c.dt_s)))),
+      need_(std::max(1, static_cast<int>(std::lround(c.fault_persistence_s / c.dt_s)))),
       agents_(static_cast<std::size_t>(per_side)),
       flags_(static_cast<std::size_t>(per_side), 0) {
-  for (auto& a : agents_) a.probation_s = c.probation_s;
+  for (auto& a : agents_) a.probation_s = c.fault_probation_s;
 }
 
 void SideDiagnosis::reset(Agent& a) {
@@ -123,7 +123,7 @@ Diagnosis SideDiagnosis::verdict(const Agent& a) const {
   // The median, not the mean: one step (a sensor's offset, a new assignment) is no jitter.
   std::vector<double> v(a.jitter.begin(), a.jitter.end());
   std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2] > c_.jitter_V ? Diagnosis::kErratic : Diagnosis::kNone;
+  return v[v.size() / 2] > c_.fault_jitter_V ? Diagnosis::kErratic : Diagnosis::kNone;
 }
 
 std::vector<DiagnosisChange> SideDiagnosis::step(double t, const SideSample& s) {
@@ -160,8 +160,8 @@ std::vector<DiagnosisChange> SideDiagnosis::step(double t, const SideSample& s) 
       w.push_back(x);
       if (static_cast<int>(w.size()) > need_) w.pop_front();
     };
-    track(a.a, std::fabs(d.measured_A - expected) > c_.current_A, smp);
-    track(a.b, d.reported && std::fabs(d.reported_A - reported_model) > c_.current_A, smp);
+    track(a.a, std::fabs(d.measured_A - expected) > c_.fault_current_A, smp);
+    track(a.b, d.reported && std::fabs(d.reported_A - reported_model) > c_.fault_current_A, smp);
     watch_jitter(a, d, median, steps.size() >= 2);
     const Diagnosis flag = verdict(a);
     if (flag == Diagnosis::kNone) continue;

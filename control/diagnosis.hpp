@@ -9,8 +9,8 @@
 //   C  erratic voltage:   c_k = (V_k - V_{k-1}) - median over the side's driving agents of the same,
 //      j_k = |c_k - c_{k-1}|; healthy agents share one speed error, so their PIDs step together
 //      (a steady c, as a wrong sensor winds the integrator up, is not jitter)
-// |r_A| or |r_B| above current_A on every tick of the persistence time, or the median of j over
-// it above jitter_V, flags the agent with the fault it looks like:
+// |r_A| or |r_B| above fault_current_A on every tick of the persistence time, or the median of j
+// over it above fault_jitter_V, flags the agent with the fault it looks like:
 //   A: no current at all -> open; the winding sees 0 V (V_eff = I R + K_e phidot = 0) -> short;
 //      more current than the model, as a weak magnet's smaller back-EMF gives (the factor
 //      F = (V - I R) / (K_e phidot) in (0, 1)) -> torque; less, as a larger resistance gives
@@ -20,7 +20,7 @@
 //      sensor; otherwise -> liar
 //   C: erratic
 // A flagged agent is isolated (the group neither counts nor assigns it, the plant disconnects it)
-// until probation_s has passed; flagged again, its probation doubles.
+// until fault_probation_s has passed; flagged again, its probation doubles.
 // Pure: explicit time, no DDS, no clock.
 #include <cstdint>
 #include <deque>
@@ -35,14 +35,20 @@ constexpr int kDiagnosisCount = 9;
 /// "open", "short", "torque", "resistance", "stuck", "sensor", "erratic", "liar" ("" for none).
 const char* diagnosis_name(Diagnosis d);
 
-struct DiagnosisConfig {
+/// The detection's thresholds: the scenario's control.fault_* fields, declared here and nowhere
+/// else (config/scenario_fields.cpp gives each its range and description).
+struct DiagnosisTuning {
+  double fault_current_A = 0.01;     ///< residual threshold of channels A and B, A
+  double fault_jitter_V = 0.5;       ///< threshold of channel C (median |c|), V
+  double fault_persistence_s = 0.1;  ///< s a residual must last
+  double fault_probation_s = 10.0;   ///< s an isolated agent stays out (doubled at each relapse)
+};
+
+/// The thresholds and what the group knows of its robot.
+struct DiagnosisConfig : DiagnosisTuning {
   model::MotorParams motor;
   model::DriverParams driver;
   double dt_s = 0.01;
-  double current_A = 0.01;     ///< residual threshold of channels A and B, A
-  double jitter_V = 0.5;       ///< threshold of channel C (median |c|), V
-  double persistence_s = 0.1;  ///< s a residual must last
-  double probation_s = 10.0;   ///< s an isolated agent stays out (doubled at each relapse)
 };
 
 /// What the plant measured of one agent's drive at t_k.

@@ -23,7 +23,8 @@ GroupCore::GroupCore(int side, const GroupConfig& config, std::optional<Ledger> 
       runner_(runner ? runner : own_runner_.get()),
       defer_ticks_(std::llround(config.level2_defer_s / config.dt_s)) {
   if (config.fault_detection) {
-    DiagnosisConfig dc = config.diagnosis;
+    DiagnosisConfig dc;
+    static_cast<DiagnosisTuning&>(dc) = config;
     dc.motor = config.robot.motor;
     dc.driver = config.robot.driver;
     dc.dt_s = config.dt_s;

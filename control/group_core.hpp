@@ -34,21 +34,27 @@ namespace maptr::control {
 
 enum class GroupMode { kAll, kEnergyConscious };
 
-struct GroupConfig {
-  model::RobotParams robot;
-  GroupMode mode = GroupMode::kEnergyConscious;
-  double dt_s = 0.01;              ///< tick period, s
-  double level2_period_s = 1.0;    ///< s between Level-2 decisions in cruise
-  double level2_defer_s = 0.0;     ///< s from a decision's inputs (tick k) to its use (tick k + d)
-  int horizon = 10;                ///< Level-2 horizon, steps
+/// The scenario's control.* fields the group reads, declared here and nowhere else: the scenario
+/// holds this struct (config::ControlConfig) and its table (config/scenario_fields.cpp) gives
+/// each field its path, range and description. A new field is a member here and a row there.
+struct GroupTuning : DiagnosisTuning {
+  double level2_period_s = 1.0;    ///< s between Level-2 decisions in cruise (paper: 1 Hz)
+  double level2_defer_s = 0.1;     ///< s from a decision's inputs (tick k) to its use (tick k + d)
+  int horizon = 10;                ///< Level-2 horizon, steps (paper: 10)
   double horizon_step_s = 0.1;     ///< Level-2 horizon step, s
   double t_on_s = 100.0;           ///< Level-3 period T_ON, s
   double thermal_limit_s = 600.0;  ///< max continuous active time of an agent, s
   bool oracle = false;             ///< also solve by exhaustive search and report its choice
-  double cruise_enter = 0.05;      ///< relative speed error at or below which cruise starts
-  double cruise_leave = 0.20;      ///< relative speed error above which cruise ends
   bool fault_detection = true;     ///< watch the agents when the tick carries measurements
-  DiagnosisConfig diagnosis;       ///< its thresholds (motor, driver and dt_s from robot and dt_s)
+};
+
+/// The tuning and what the group node knows of the run.
+struct GroupConfig : GroupTuning {
+  model::RobotParams robot;
+  GroupMode mode = GroupMode::kEnergyConscious;
+  double dt_s = 0.01;          ///< tick period, s
+  double cruise_enter = 0.05;  ///< relative speed error at or below which cruise starts
+  double cruise_leave = 0.20;  ///< relative speed error above which cruise ends
 };
 
 /// What the group reads from one tick.

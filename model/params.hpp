@@ -6,7 +6,9 @@
 
 namespace maptr::model {
 
-/// Thrown when a parameter is invalid; the message names the field and the value.
+/// Thrown for a motor type the paper has no data for; the message names the field and the value.
+/// The ranges of the parameters a scenario sets are checked by its field table
+/// (config/scenario_fields.cpp), not here.
 class ParamError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
@@ -26,7 +28,6 @@ struct MotorParams {
   double mass_kg = 0.21;                ///< motor mass, kg
   double friction_sign_scale_rad_s = 0.5;  ///< smooth sign tanh(phidot/scale) for K_T I_0, rad/s
 
-  void validate() const;
 };
 
 /// A parameter value as error messages print it.
@@ -42,7 +43,6 @@ struct BatteryParams {
   double y = 23.4;         ///< V
   double z = -1.018e-5;    ///< 1/mAh
   double capacity_mAh = 6395.0;
-  void validate() const;
 };
 
 /// The motor driver of every agent (docs/MODEL.md "Driver").
@@ -57,7 +57,6 @@ struct DriverParams {
   /// Lowest voltage the driver applies at battery voltage V_B: -V_B (H-bridge) or 0.
   double floor_V(double battery_V) const { return bidirectional ? -battery_V : 0.0; }
   const char* name() const { return bidirectional ? "bidirectional" : "unidirectional"; }
-  void validate() const;
 };
 
 /// The whole robot. N agents, N/2 per side, N/4 rows of 4 wheels spaced b apart, centred.
@@ -81,21 +80,12 @@ struct RobotParams {
   DriverParams driver;
   BatteryParams battery;
 
-  void validate() const;
   int per_side() const { return agents / 2; }
   int rows() const { return agents / 4; }
   double yaw_inertia() const;    ///< effective I_zz, kg m^2
   double wheel_inertia() const;  ///< effective I_w, kg m^2
   /// Longitudinal offset of wheel row j (0 = rearmost), m: (j - (rows-1)/2) b.
   double row_offset(int j) const;
-};
-
-/// Level-1 PID gains and limits. Output is a motor voltage, V.
-struct PidParams {
-  double kp = 0.5;   ///< V per rad/s
-  double ki = 2.0;   ///< V per rad
-  double kd = 0.0;   ///< V s^2/rad (acts on the error rate, rad/s^2)
-  void validate() const;
 };
 
 }  // namespace maptr::model

@@ -24,15 +24,22 @@ namespace maptr::control {
 
 enum class AgentState : uint8_t { kIdle = 0, kActive = 1, kHolding = 2, kCoasting = 3, kStopping = 4 };
 
-struct AgentConfig {
-  model::MotorParams motor;
-  model::DriverParams driver;
-  model::PidParams pid;
-  double wheel_radius_m = 0.035;   ///< r, m
-  double dt_s = 0.01;              ///< tick period, s
+/// The scenario's control.* fields the agent reads, declared here and nowhere else: the scenario
+/// holds this struct (config::ControlConfig) and its table (config/scenario_fields.cpp) gives
+/// each field its path, range and description.
+struct AgentTuning {
+  PidGains pid;                    ///< control.kp, control.ki, control.kd
   double group_hold_s = 1.0;       ///< s a silent group's last assignment is held
   double central_timeout_s = 1.0;  ///< s of silence from central before the safe stop
   double stop_decel_mps2 = 2.0;    ///< deceleration of the safe stop, m/s^2
+};
+
+/// The tuning and what the agent node knows of its robot and the run.
+struct AgentConfig : AgentTuning {
+  model::MotorParams motor;
+  model::DriverParams driver;
+  double wheel_radius_m = 0.035;  ///< r, m
+  double dt_s = 0.01;             ///< tick period, s
 };
 
 /// What an agent reads from one tick (its own side's values).

@@ -4,13 +4,19 @@
 // clamped to [V_min, V_max] (V_max = battery voltage; V_min = 0, or -V_B with an H-bridge). Anti-windup by conditional integration:
 // the integral is not advanced when the output is saturated and the error pushes further
 // into saturation. Explicit time: the caller passes dt; no clock is read.
-#include "model/params.hpp"
-
 namespace maptr::control {
+
+/// Level-1 PID gains (the scenario's control.kp, control.ki, control.kd). Output is a motor
+/// voltage, V.
+struct PidGains {
+  double kp = 0.5;  ///< V per rad/s
+  double ki = 2.0;  ///< V per rad
+  double kd = 0.0;  ///< V s^2/rad (acts on the error rate, rad/s^2)
+};
 
 class Pid {
  public:
-  explicit Pid(model::PidParams g = {}) : g_(g) {}
+  explicit Pid(PidGains g = {}) : g_(g) {}
 
   /// One control step; returns the voltage clamped to [v_min_V, max(v_min_V, v_max_V)], V.
   double update(double error_rad_s, double dt_s, double v_min_V, double v_max_V);
@@ -28,7 +34,7 @@ class Pid {
   bool saturated() const { return saturated_; }
 
  private:
-  model::PidParams g_;
+  PidGains g_;
   double integral_ = 0.0;    ///< rad
   double prev_error_ = 0.0;  ///< rad/s
   bool first_ = true;

@@ -87,7 +87,6 @@ double side_torque_at(const Level2Problem& p, double n, double voltage, double p
 }  // namespace
 
 void Level2Problem::validate() const {
-  robot.validate();
   require(side == 0 || side == 1, "side", side, "must be 0 (left) or 1 (right)");
   require(live >= 0 && live <= robot.per_side(), "live", live,
           "must be between 0 and the agents per side (" + std::to_string(robot.per_side()) + ")");

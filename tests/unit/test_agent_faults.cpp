@@ -109,8 +109,8 @@ control::DiagnosisConfig diag_config() {
   control::DiagnosisConfig c;
   c.driver = bidirectional();
   c.dt_s = 0.01;
-  c.persistence_s = 0.1;
-  c.probation_s = 10.0;
+  c.fault_persistence_s = 0.1;
+  c.fault_probation_s = 10.0;
   return c;
 }
 

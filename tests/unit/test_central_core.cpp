@@ -106,7 +106,7 @@ TEST(CentralCore, ARobotBesideTheLineIsSteeredBackSymmetrically) {
 double follow(const std::vector<Segment>& segs, Pose start, double run_s, double tail_s, double gain = 2.0) {
   CentralConfig c;
   c.trajectory.segments = segs;
-  c.heading_gain_1_s = gain;
+  c.path_heading_gain_1_s = gain;
   const CentralCore core(c);
   const Path path(c.trajectory);
   Pose x = start;

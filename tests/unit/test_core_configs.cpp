@@ -41,12 +41,12 @@ TEST(CoreConfigs, EachCoreGetsItsFieldsFromTheScenario) {
   EXPECT_DOUBLE_EQ(group.thermal_limit_s, 33.0);
   EXPECT_TRUE(group.oracle);
   EXPECT_TRUE(group.fault_detection);
-  EXPECT_DOUBLE_EQ(group.diagnosis.current_A, 0.75);
-  EXPECT_DOUBLE_EQ(group.diagnosis.jitter_V, 1.5);
-  EXPECT_DOUBLE_EQ(group.diagnosis.persistence_s, 0.3);
-  EXPECT_DOUBLE_EQ(group.diagnosis.probation_s, 11.0);
+  EXPECT_DOUBLE_EQ(group.fault_current_A, 0.75);
+  EXPECT_DOUBLE_EQ(group.fault_jitter_V, 1.5);
+  EXPECT_DOUBLE_EQ(group.fault_persistence_s, 0.3);
+  EXPECT_DOUBLE_EQ(group.fault_probation_s, 11.0);
   const auto central = maptr::config::central_config(s);
-  EXPECT_DOUBLE_EQ(central.heading_gain_1_s, 4.5);
+  EXPECT_DOUBLE_EQ(central.path_heading_gain_1_s, 4.5);
   EXPECT_DOUBLE_EQ(central.dt_s, 0.005);
   const auto plant = maptr::config::plant_core_config(s, 1.5, 2.5);
   EXPECT_EQ(plant.trace_every, 3);

@@ -26,7 +26,8 @@ constexpr int kPerSide = 8;
 GroupConfig ec() {
   GroupConfig c;
   c.oracle = true;
-  c.t_on_s = 1000.0;  // Level 3 on T_ON only where a test asks for it
+  c.t_on_s = 1000.0;       // Level 3 on T_ON only where a test asks for it
+  c.level2_defer_s = 0.0;  // a decision applied in the tick whose inputs it used, unless a test asks
   return c;
 }
 

@@ -111,13 +111,4 @@ TEST(Integrator, RefusesNonPositiveDt) {
   EXPECT_NO_THROW(cv.step(x, u, 0.0, 0.01));
 }
 
-TEST(Integrator, RefusesInvalidParameters) {
-  mm::RobotParams p;
-  p.agents = 6;
-  EXPECT_THROW(CvodeIntegrator{p}, mm::ParamError);
-  p.agents = 16;
-  p.gross_mass_kg = -1.0;
-  EXPECT_THROW(CvodeIntegrator{p}, mm::ParamError);
-}
-
 }  // namespace

@@ -1,25 +1,19 @@
-// Parameter validation and derived parameters (model/params.hpp).
-// Every refusal must throw model::ParamError whose message names the field and the bad value.
+// The motors of Table 1 and the derived parameters (model/params.hpp). The ranges of what a
+// scenario sets are the field table's (tests/unit/test_scenario.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
-#include <limits>
 #include <string>
 
 #include "model/params.hpp"
 
 namespace {
 
-using maptr::model::BatteryParams;
 using maptr::model::MotorParams;
 using maptr::model::ParamError;
-using maptr::model::PidParams;
 using maptr::model::RobotParams;
 using maptr::model::motor_type;
-
-const double kNaN = std::numeric_limits<double>::quiet_NaN();
-const double kInf = std::numeric_limits<double>::infinity();
 
 // Runs fn, which must throw ParamError naming `field` and `value` in what().
 void expect_refusal(const std::function<void()>& fn, const std::string& field, const std::string& value) {
@@ -35,28 +29,6 @@ void expect_refusal(const std::function<void()>& fn, const std::string& field, c
     return;
   }
   ADD_FAILURE() << "expected ParamError for " << field << " = " << value << ", nothing thrown";
-}
-
-// Validates a copy of the default robot after `change` was applied to it.
-void expect_robot_refusal(const std::function<void(RobotParams&)>& change, const std::string& field,
-                          const std::string& value) {
-  expect_refusal(
-      [&] {
-        RobotParams p;
-        change(p);
-        p.validate();
-      },
-      field, value);
-}
-
-TEST(Params, DefaultsAndBothMotorTypesValidate) {
-  EXPECT_NO_THROW(RobotParams{}.validate());
-  EXPECT_NO_THROW(PidParams{}.validate());
-  EXPECT_NO_THROW(motor_type("I").validate());
-  EXPECT_NO_THROW(motor_type("II").validate());
-  RobotParams p;
-  p.motor = motor_type("II");
-  EXPECT_NO_THROW(p.validate());
 }
 
 TEST(Params, MotorTypesHoldTable1) {
@@ -89,76 +61,6 @@ TEST(Params, UnknownMotorTypesAreRefused) {
   expect_refusal([] { motor_type("III"); }, "motor.type", "III");  // no data in the paper
   expect_refusal([] { motor_type("X"); }, "motor.type", "X");
   expect_refusal([] { motor_type("i"); }, "motor.type", "i");
-  expect_robot_refusal([](RobotParams& p) { p.motor.type = "X"; }, "motor.type", "X");
-  expect_robot_refusal([](RobotParams& p) { p.motor.type = "III"; }, "motor.type", "III");
-}
-
-TEST(Params, AgentsMustBeAMultipleOf4Within4To512) {
-  for (int n : {4, 8, 16, 64, 128, 512}) {
-    RobotParams p;
-    p.agents = n;
-    EXPECT_NO_THROW(p.validate()) << n;
-  }
-  for (int n : {6, 10, 18, 3, 1}) expect_robot_refusal([n](RobotParams& p) { p.agents = n; }, "agents", std::to_string(n));
-  for (int n : {0, -4, 516, 1024}) expect_robot_refusal([n](RobotParams& p) { p.agents = n; }, "agents", std::to_string(n));
-}
-
-TEST(Params, MassRefusals) {
-  expect_robot_refusal([](RobotParams& p) { p.gross_mass_kg = -1.0; }, "gross_mass_kg", "-1");
-  expect_robot_refusal([](RobotParams& p) { p.gross_mass_kg = 0.0; }, "gross_mass_kg", "0");
-  expect_robot_refusal([](RobotParams& p) { p.gross_mass_kg = kNaN; }, "gross_mass_kg", "nan");
-  expect_robot_refusal([](RobotParams& p) { p.gross_mass_kg = kInf; }, "gross_mass_kg", "inf");
-  expect_robot_refusal([](RobotParams& p) { p.wheel_mass_kg = -0.05; }, "wheel_mass_kg", "-0.05");
-}
-
-TEST(Params, GeometryAndFrictionRefusals) {
-  expect_robot_refusal([](RobotParams& p) { p.wheel_radius_m = 0.0; }, "wheel_radius_m", "0");
-  expect_robot_refusal([](RobotParams& p) { p.wheel_radius_m = -0.035; }, "wheel_radius_m", "-0.035");
-  expect_robot_refusal([](RobotParams& p) { p.track_m = 0.0; }, "track_m", "0");
-  expect_robot_refusal([](RobotParams& p) { p.row_spacing_m = -0.08; }, "row_spacing_m", "-0.08");
-  expect_robot_refusal([](RobotParams& p) { p.mu_rolling = -0.01; }, "mu_rolling", "-0.01");
-  expect_robot_refusal([](RobotParams& p) { p.mu_lateral = kNaN; }, "mu_lateral", "nan");
-  expect_robot_refusal([](RobotParams& p) { p.k_s = 0.0; }, "k_s", "0");
-  expect_robot_refusal([](RobotParams& p) { p.gravity = -9.81; }, "gravity", "-9.81");
-  expect_robot_refusal([](RobotParams& p) { p.yaw_inertia_kgm2 = kNaN; }, "yaw_inertia_kgm2", "nan");
-  expect_robot_refusal([](RobotParams& p) { p.wheel_inertia_kgm2 = kInf; }, "wheel_inertia_kgm2", "inf");
-}
-
-TEST(Params, MotorBatteryAndPidRefusals) {
-  expect_robot_refusal([](RobotParams& p) { p.motor.resistance_ohm = 0.0; }, "motor.resistance_ohm", "0");
-  expect_robot_refusal([](RobotParams& p) { p.motor.torque_constant_NmA = -0.0382; }, "motor.torque_constant_NmA",
-                       "-0.0382");
-  expect_robot_refusal([](RobotParams& p) { p.motor.back_emf_Vs = kNaN; }, "motor.back_emf_Vs", "nan");
-  expect_robot_refusal([](RobotParams& p) { p.motor.no_load_current_A = -0.05; }, "motor.no_load_current_A",
-                       "-0.05");
-  expect_robot_refusal([](RobotParams& p) { p.motor.viscous_Nms = -6e-07; }, "motor.viscous_Nms", "-6e-07");
-  expect_robot_refusal([](RobotParams& p) { p.motor.rated_voltage_V = 0.0; }, "motor.rated_voltage_V", "0");
-  expect_robot_refusal([](RobotParams& p) { p.motor.friction_sign_scale_rad_s = 0.0; },
-                       "motor.friction_sign_scale_rad_s", "0");
-  expect_robot_refusal([](RobotParams& p) { p.battery.capacity_mAh = -6395.0; }, "battery.capacity_mAh", "-6395");
-  expect_robot_refusal([](RobotParams& p) { p.battery.y = 0.0; }, "battery.y", "0");
-  expect_refusal(
-      [] {
-        PidParams g;
-        g.kp = -0.5;
-        g.validate();
-      },
-      "pid.kp", "-0.5");
-  expect_refusal(
-      [] {
-        PidParams g;
-        g.ki = kNaN;
-        g.validate();
-      },
-      "pid.ki", "nan");
-  expect_refusal(
-      [] {
-        PidParams g;
-        g.kp = 0.0;
-        g.ki = 0.0;
-        g.validate();
-      },
-      "pid.kp", "0");
 }
 
 TEST(Params, DerivedInertiasAndRowOffsets) {

@@ -11,10 +11,10 @@
 namespace {
 
 using maptr::control::Pid;
-using maptr::model::PidParams;
+using maptr::control::PidGains;
 
-PidParams gains(double kp, double ki, double kd) {
-  PidParams g;
+PidGains gains(double kp, double ki, double kd) {
+  PidGains g;
   g.kp = kp;
   g.ki = ki;
   g.kd = kd;
@@ -107,7 +107,7 @@ TEST(Pid, PreloadGivesTheRequestedOutputAtZeroError) {
 }
 
 TEST(Pid, AlignGivesTheSameOutputsAsTheRunningController) {
-  PidParams g;
+  PidGains g;
   Pid running(g), joining(g);
   double e_prev = 0.0, v = 0.0;
   for (int k = 0; k < 50; ++k) {

@@ -256,6 +256,12 @@ TEST(Scenario, InfiniteTrajectoryAccelerationIsRefused) {
                  ".inf");
 }
 
+TEST(Scenario, APidWithNeitherProportionalNorIntegralGainIsRefused) {
+  expect_refused("control: {kp: 0, ki: 0}\n", "control.ki", "0");
+  EXPECT_NO_THROW(parse_scenario("control: {kp: 0, ki: 0.5}\n", "t.yaml"));
+  EXPECT_NO_THROW(parse_scenario("control: {kp: 0.5, ki: 0}\n", "t.yaml"));
+}
+
 TEST(Scenario, AWheelSpeedBeyondTheMotorsIsRefused) {
   expect_refused("trajectory:\n  segments:\n    - {type: straight, speed_mps: 40, duration_s: 5}\n",
                  "trajectory.segments[0].speed_mps", "40");
