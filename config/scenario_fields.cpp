@@ -213,6 +213,11 @@ Table<S> control_fields() {
           "central's path follower: heading gain K (the cross-track error settles critically damped at "
           "K/2 rad/s)"),
       real<S>(
+          "control.path_max_correction_rad_s",
+          [](auto& s) -> auto& { return s.control.path_max_correction_rad_s; }, above(0, 1e3), "rad/s",
+          "central's path follower: the most yaw rate its heading loop adds to the path's own "
+          "(curvature x speed) to bring the robot back to the path"),
+      real<S>(
           "control.path_tolerance_m", [](auto& s) -> auto& { return s.control.path_tolerance_m; },
           above(0, 1e6), "m",
           "a run whose cross-track error exceeds this after its first second ends degraded "

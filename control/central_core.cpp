@@ -18,8 +18,8 @@ CentralOutput CentralCore::step(const CentralInput& in) const {
     const double k = c_.path_heading_gain_1_s;
     const double lookahead = std::max(4.0 * std::fabs(in.v_x) / k, c_.min_lookahead_m);
     const double wanted = p.on_path.theta - std::atan(p.cross_track / lookahead);
-    const double correction =
-        std::clamp(k * wrap_angle(wanted - in.pose.theta), -c_.max_correction_rad_s, c_.max_correction_rad_s);
+    const double correction = std::clamp(k * wrap_angle(wanted - in.pose.theta),
+                                         -c_.path_max_correction_rad_s, c_.path_max_correction_rad_s);
     o.w_ref = ref.v * p.kappa + correction;
     if (o.w_ref == 0.0) o.w_ref = 0.0;  // never -0: the command on a straight line is the profile's
     o.cross_track_m = p.cross_track;

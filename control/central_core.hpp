@@ -24,7 +24,8 @@ namespace maptr::control {
 /// The scenario's control.* fields central reads, declared here and nowhere else (the scenario
 /// holds this struct; config/scenario_fields.cpp gives each its path, range and description).
 struct CentralTuning {
-  double path_heading_gain_1_s = 2.0;  ///< K, 1/s
+  double path_heading_gain_1_s = 2.0;      ///< K, 1/s
+  double path_max_correction_rad_s = 1.0;  ///< w_corr_max, rad/s
 };
 
 /// The tuning, the mission and what central knows of the robot and the run.
@@ -34,7 +35,6 @@ struct CentralConfig : CentralTuning {
   double track_m = 0.2;           ///< a, m
   double wheel_radius_m = 0.035;  ///< r, m
   double min_lookahead_m = 0.5;   ///< L_min, m
-  double max_correction_rad_s = 1.0;  ///< w_corr_max, rad/s
   double search_ahead_m = 2.0;    ///< the nearest point is sought up to the reference's length + this, m
 };
 

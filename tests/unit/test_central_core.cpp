@@ -101,6 +101,19 @@ TEST(CentralCore, ARobotBesideTheLineIsSteeredBackSymmetrically) {
   EXPECT_NEAR(l.w_ref, -2.0 * std::atan(0.3 / 16.0), 1e-12);
 }
 
+TEST(CentralCore, TheHeadingLoopAddsAtMostTheMaximumCorrection) {
+  // 20 m beside a straight line at 8 m/s the heading loop wants K atan(20 / 16) = 1.79 rad/s.
+  CentralConfig c = mission();
+  CentralInput left = on_reference(c, 0.5, 0.5), right = left;
+  left.pose.y = 20.0;
+  right.pose.y = -20.0;
+  for (const double bound : {1.0, 0.25}) {
+    c.path_max_correction_rad_s = bound;
+    EXPECT_DOUBLE_EQ(CentralCore(c).step(left).w_ref, -bound);
+    EXPECT_DOUBLE_EQ(CentralCore(c).step(right).w_ref, bound);
+  }
+}
+
 /// A kinematic robot (unicycle) that does what central commands, on a path of `segs`, started
 /// off the path; returns the largest |cross-track| over the last `tail_s` seconds.
 double follow(const std::vector<Segment>& segs, Pose start, double run_s, double tail_s, double gain = 2.0) {

@@ -13,7 +13,8 @@ Scenario distinct() {
       "agents: 8\nmode: all\ntick_hz: 200\ntrace_every: 3\n"
       "control: {kp: 3.5, ki: 7, level2_period_s: 2, level2_defer_s: 0.25, horizon: 7, t_on_s: 9,\n"
       "          thermal_limit_s: 33, oracle: true, group_hold_s: 1.5, central_timeout_s: 2.5,\n"
-      "          stop_decel_mps2: 1.25, path_heading_gain_1_s: 4.5, fault_detection: true,\n"
+      "          stop_decel_mps2: 1.25, path_heading_gain_1_s: 4.5, path_max_correction_rad_s: 0.6,\n"
+      "          fault_detection: true,\n"
       "          fault_current_A: 0.75, fault_jitter_V: 1.5, fault_persistence_s: 0.3, fault_probation_s: "
       "11}\n"
       "faults:\n  - {target: L1, action: fault, at_s: 2, mode: torque, value: 0.5}\n"
@@ -47,6 +48,7 @@ TEST(CoreConfigs, EachCoreGetsItsFieldsFromTheScenario) {
   EXPECT_DOUBLE_EQ(group.fault_probation_s, 11.0);
   const auto central = maptr::config::central_config(s);
   EXPECT_DOUBLE_EQ(central.path_heading_gain_1_s, 4.5);
+  EXPECT_DOUBLE_EQ(central.path_max_correction_rad_s, 0.6);
   EXPECT_DOUBLE_EQ(central.dt_s, 0.005);
   const auto plant = maptr::config::plant_core_config(s, 1.5, 2.5);
   EXPECT_EQ(plant.trace_every, 3);
