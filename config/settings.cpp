@@ -2,6 +2,7 @@
 
 #include <charconv>
 
+#include "control/central_core.hpp"
 #include "control/group_core.hpp"
 #include "control/level2/solver.hpp"
 
@@ -19,7 +20,12 @@ std::string setting_value(std::chrono::milliseconds v) { return std::to_string(v
 std::vector<Setting> core_settings() {
   const control::GroupConfig g;
   const control::Level2SolverConfig l2;
+  const control::CentralConfig c;
   return {
+      {"central.min_lookahead_m", setting_value(c.min_lookahead_m), "m",
+       "the path follower's shortest look-ahead L_min (L = max(4 |v| / K, L_min))"},
+      {"central.search_ahead_m", setting_value(c.search_ahead_m), "m",
+       "the path's nearest point is sought up to the reference's arc length + this"},
       {"group.cruise_enter", setting_value(g.cruise_enter), "1",
        "relative speed error at or below which a side is in cruise (Level 2 decides only then)"},
       {"group.cruise_leave", setting_value(g.cruise_leave), "1",
