@@ -161,7 +161,7 @@ Table<S> robot_fields() {
   };
 }
 
-/// control.*: the wheel PID, Levels 2 and 3, the agents' safe behaviour and the path follower.
+/// control.*: the wheel PID, Levels 2 and 3 and the agents' safe behaviour.
 Table<S> control_fields() {
   return {
       real<S>(
@@ -207,6 +207,12 @@ Table<S> control_fields() {
       real<S>(
           "control.stop_decel_mps2", [](auto& s) -> auto& { return s.control.stop_decel_mps2; },
           above(0, 1e3), "m/s^2", "deceleration of that ramp"),
+  };
+}
+
+/// control.path_*: central's path follower and the run's judgement of it.
+Table<S> path_fields() {
+  return {
       real<S>(
           "control.path_heading_gain_1_s", [](auto& s) -> auto& { return s.control.path_heading_gain_1_s; },
           above(0, 1e3), "1/s",
@@ -259,7 +265,7 @@ Table<S> fault_detection_fields() {
 const Table<Scenario>& scenario_table() {
   static const Table<S> t = [] {
     Table<S> v = run_fields();
-    for (auto part : {robot_fields(), control_fields(), fault_detection_fields()})
+    for (auto part : {robot_fields(), control_fields(), path_fields(), fault_detection_fields()})
       v.insert(v.end(), part.begin(), part.end());
     return v;
   }();
