@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "records/plant_results.hpp"
+
 namespace maptr::plant {
 
 enum class Role { kAgent, kGroup, kCentral };
@@ -46,12 +48,8 @@ struct Member {
 };
 
 /// One membership change: who, what, simulated time (s) and wall clock (ms since the epoch).
-struct MembershipRecord {
-  std::string name;
-  std::string event;
-  double t_s = 0.0;
-  double wall_ms = 0.0;
-};
+/// A process joining or leaving, as plant.json keeps it.
+using MembershipRecord = records::MembershipEvent;
 
 /// What a launcher event says (kOther: any other kind, only counted).
 enum class LauncherEvent { kDied, kStarted, kPaused, kResumed, kOther };

@@ -254,8 +254,7 @@ int PlantLoop::report(bool stopped) {
   in.declared_dead_by_deadline = declared_dead_;
   in.tick_timing_us = timing_.json();
   in.group_wear = wear_.json();
-  records::write_json_file(records::plant_results_path(run_dir_),
-                           plant_report(core_, in, membership_.records()));
+  records::write_plant_results(run_dir_, plant_results(core_, in, membership_.records()));
   log_.info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", in.status, core_.tick(), core_.t(),
             wall);
   // Give the last Tick time to reach every reader before the participant goes away.

@@ -91,81 +91,60 @@ std::vector<std::string> fault_problems(const sim::FaultBook& book, long long ex
   return out;
 }
 
-nlohmann::json agent_faults_json(const sim::FaultBook& book) {
-  auto opt = [](const std::optional<double>& v) -> nlohmann::json { return v ? nlohmann::json(*v) : nlohmann::json(); };
-  nlohmann::json faults = nlohmann::json::array();
+records::AgentFaults agent_faults(const sim::FaultBook& book) {
+  records::AgentFaults out;
   for (const auto& r : book.records())
-    faults.push_back({{"target", r.target},
-                      {"mode", r.mode},
-                      {"value", r.value},
-                      {"injected_s", r.injected_s},
-                      {"detected_s", opt(r.detected_s)},
-                      {"isolated_s", opt(r.isolated_s)},
-                      {"diagnosed_mode", r.diagnosed_mode.empty() ? nlohmann::json() : nlohmann::json(r.diagnosed_mode)},
-                      {"relapses", r.relapses},
-                      {"exposed_ticks", r.exposed_ticks},
-                      {"cleared_s", opt(r.cleared_s)},
-                      {"readmitted_s", opt(r.readmitted_s)}});
-  nlohmann::json events = nlohmann::json::array();
+    out.faults.push_back(
+        {r.target, r.mode, r.value, r.injected_s, r.detected_s, r.isolated_s,
+         r.diagnosed_mode.empty() ? std::nullopt : std::optional<std::string>(r.diagnosed_mode), r.relapses,
+         r.exposed_ticks, r.cleared_s, r.readmitted_s});
   for (const auto& e : book.events())
-    events.push_back({{"t_s", e.t_s},
-                      {"target", e.target},
-                      {"event", e.diagnosed.empty() ? "readmitted" : "isolated"},
-                      {"diagnosed", e.diagnosed},
-                      {"false_detection", e.false_detection}});
-  return {{"faults", faults}, {"diagnoses", events}, {"false_detections", book.false_detections()}};
+    out.diagnoses.push_back(
+        {e.t_s, e.target, e.diagnosed.empty() ? "readmitted" : "isolated", e.diagnosed, e.false_detection});
+  out.false_detections = book.false_detections();
+  return out;
 }
 
-nlohmann::json membership_json(const std::vector<MembershipRecord>& records) {
-  nlohmann::json events = nlohmann::json::array();
-  for (const auto& r : records)
-    events.push_back({{"name", r.name}, {"event", r.event}, {"t_s", r.t_s}, {"wall_ms", r.wall_ms}});
-  return events;
-}
-
-nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
-                            const std::vector<MembershipRecord>& records) {
+records::PlantResults plant_results(const sim::PlantCore& core, const ReportInputs& in,
+                                    const std::vector<MembershipRecord>& records) {
   const auto& x = core.state();
-  nlohmann::json j;
-  j["status"] = in.status;
-  j["sim_time_s"] = core.t();
-  j["ticks"] = core.tick();
-  j["tick_hz"] = in.tick_hz;
-  j["loop_wall_s"] = in.loop_wall_s;
-  j["distance_m"] = x[model::kDistance];
-  j["energy_J"] = x[model::kEnergyL] + x[model::kEnergyR];
-  j["energy_side_J"] = {{"L", x[model::kEnergyL]}, {"R", x[model::kEnergyR]}};
-  j["mean_active_agents"] = core.mean_active_agents();
-  j["active_agents"] = {{"L", core.last_active(0)}, {"R", core.last_active(1)}};
-  j["live_agents"] = {{"L", in.live_agents[0]}, {"R", in.live_agents[1]}};
-  j["battery_discharge_mAh"] = {{"L", core.drawn_mAh(0)}, {"R", core.drawn_mAh(1)}};
-  j["battery_state_mAh"] = {{"L", x[model::kChargeL]}, {"R", x[model::kChargeR]}};
-  j["agent_active_s"] = {{"L", core.active_time(0)}, {"R", core.active_time(1)}};
-  j["end_reason"] = in.end_reason;
-  j["battery_V"] = {{"L", core.battery_V(0)}, {"R", core.battery_V(1)}};
-  j["pose"] = {{"x_m", x[model::kX]}, {"y_m", x[model::kY]}, {"theta_rad", x[model::kTheta]}};
-  j["final_speed_mps"] = x[model::kVx];
+  records::PlantResults j;
+  j.status = in.status;
+  j.end_reason = in.end_reason;
+  j.sim_time_s = core.t();
+  j.ticks = core.tick();
+  j.tick_hz = in.tick_hz;
+  j.loop_wall_s = in.loop_wall_s;
+  j.distance_m = x[model::kDistance];
+  j.energy_J = x[model::kEnergyL] + x[model::kEnergyR];
+  j.energy_side_J = {x[model::kEnergyL], x[model::kEnergyR]};
+  j.mean_active_agents = core.mean_active_agents();
+  j.active_agents = {core.last_active(0), core.last_active(1)};
+  j.live_agents = {in.live_agents[0], in.live_agents[1]};
+  j.battery_discharge_mAh = {core.drawn_mAh(0), core.drawn_mAh(1)};
+  j.battery_state_mAh = {x[model::kChargeL], x[model::kChargeR]};
+  j.agent_active_s = {core.active_time(0), core.active_time(1)};
+  j.battery_V = {core.battery_V(0), core.battery_V(1)};
+  j.pose = {x[model::kX], x[model::kY], x[model::kTheta]};
+  j.final_speed_mps = x[model::kVx];
   const auto& tr = core.tracking();
-  j["path"] = {{"cross_track_max_m", tr.cross_track_max()},
-               {"cross_track_max_t_s", tr.cross_track_max_t()},
-               {"cross_track_rms_m", tr.cross_track_rms()},
-               {"heading_error_max_rad", tr.heading_error_max()},
-               {"final_position_error_m", tr.final_position_error()}};
-  j["max_speed_error_pct"] = core.max_speed_error_pct();
-  j["rms_speed_error_pct"] = core.rms_speed_error_pct();
-  j["rejected_samples"] = in.rejected_samples;
-  j["rejected_by_process"] = in.rejected_by_process;
-  j["rejected_by_kind"] = in.rejected_by_kind;
-  j["late_samples"] = in.late_samples;
-  j["missed_deadlines"] = in.missed_deadlines;
-  j["loop_scheduling"] = in.loop_scheduling;
-  j["tick_repairs"] = in.tick_repairs;
-  j["answers_taken"] = in.answers_taken;
-  j["tick_timing_us"] = in.tick_timing_us;
-  j["declared_dead_by_deadline"] = in.declared_dead_by_deadline;
-  j["membership_events"] = membership_json(records);
-  j["group_wear"] = in.group_wear;
-  j["agent_faults"] = agent_faults_json(core.faults());
+  j.path = {tr.cross_track_max(), tr.cross_track_max_t(), tr.cross_track_rms(), tr.heading_error_max(),
+            tr.final_position_error()};
+  j.max_speed_error_pct = core.max_speed_error_pct();
+  j.rms_speed_error_pct = core.rms_speed_error_pct();
+  j.rejected_samples = in.rejected_samples;
+  j.rejected_by_process = in.rejected_by_process;
+  j.rejected_by_kind = in.rejected_by_kind;
+  j.late_samples = in.late_samples;
+  j.missed_deadlines = in.missed_deadlines;
+  j.loop_scheduling = in.loop_scheduling;
+  j.tick_repairs = in.tick_repairs;
+  j.answers_taken = in.answers_taken;
+  j.tick_timing_us = in.tick_timing_us;
+  j.declared_dead_by_deadline = in.declared_dead_by_deadline;
+  j.membership_events = records;
+  j.group_wear = in.group_wear;
+  j.agent_faults = agent_faults(core.faults());
   return j;
 }
 

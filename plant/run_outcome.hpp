@@ -1,13 +1,13 @@
 #pragma once
 // The run's report: its status (ok, degraded or aborted, with the reason), the wall-clock
-// timing of the lock-step ticks and the content of plant.json, which the launcher and the
-// experiments read by key.
-#include <nlohmann/json.hpp>
+// timing of the lock-step ticks and the content of plant.json (records/plant_results.hpp).
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "plant/membership.hpp"
+#include "records/plant_results.hpp"
 #include "sim/plant_core.hpp"
 
 namespace maptr::plant {
@@ -94,9 +94,8 @@ struct ReportInputs {
   nlohmann::json group_wear = nlohmann::json::object();  ///< WearWatch::json()
 };
 
-nlohmann::json membership_json(const std::vector<MembershipRecord>& records);
-/// plant.json.
-nlohmann::json plant_report(const sim::PlantCore& core, const ReportInputs& in,
-                            const std::vector<MembershipRecord>& records);
+/// The content of plant.json (records/plant_results.hpp).
+records::PlantResults plant_results(const sim::PlantCore& core, const ReportInputs& in,
+                                    const std::vector<MembershipRecord>& records);
 
 }  // namespace maptr::plant

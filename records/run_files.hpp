@@ -2,7 +2,8 @@
 // The JSON files of a run folder, one path function each, with their reader and writer:
 //   summary.json  the launcher's record of the run (keys: records/summary_fields.cpp; read
 //                 through records::Summary)
-//   plant.json    the plant's results, under `plant` in summary.json (same key table)
+//   plant.json    the plant's results, under `plant` in summary.json (its struct, reader and
+//                 writer: records/plant_results.hpp)
 //   fleet.json    who is who while the fleet runs: the launcher's and every child's pid, name,
 //                 host and participant id (for `maptr top`, the benches and the soak)
 // The other files have a header of their own: trace, assignments, level2_log, ledger_file, mcap.

@@ -33,8 +33,8 @@ std::vector<Row> speed_errors(const std::string& path, double r) {
 
 }  // namespace
 
-void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, const std::string& trace_csv,
-                    double wheel_radius_m, double band_pct) {
+void analyse_faults(nlohmann::json& failures, const std::vector<records::MembershipEvent>& events,
+                    const std::string& trace_csv, double wheel_radius_m, double band_pct) {
   const std::vector<Row> rows = speed_errors(trace_csv, wheel_radius_m);
   const double t_end = rows.empty() ? 0.0 : rows.back().t;
   for (std::size_t i = 0; i < failures.size(); ++i) {
@@ -57,10 +57,10 @@ void analyse_faults(nlohmann::json& failures, const nlohmann::json& events, cons
     f["detected_s"] = nullptr;
     f["detect_wall_ms"] = nullptr;
     for (const auto& e : events) {
-      if (!concerns(e.value("name", "")) || e.value("t_s", -1.0) < at - 1e-9) continue;
-      if ((e.value("event", "") == "rejoined") != restart) continue;
-      f["detected_s"] = e.value("t_s", 0.0);
-      if (f.contains("wall_ms")) f["detect_wall_ms"] = e.value("wall_ms", 0.0) - f.value("wall_ms", 0.0);
+      if (!concerns(e.name) || e.t_s < at - 1e-9) continue;
+      if ((e.event == "rejoined") != restart) continue;
+      f["detected_s"] = e.t_s;
+      if (f.contains("wall_ms")) f["detect_wall_ms"] = e.wall_ms - f.value("wall_ms", 0.0);
       break;
     }
     }

@@ -45,15 +45,16 @@ std::string membership_kind(const std::string& e) {
   return it == m.end() ? e : it->second;
 }
 
-nlohmann::json membership_events(const nlohmann::json& plant_events, const nlohmann::json& failures) {
+nlohmann::json membership_events(const std::vector<records::MembershipEvent>& plant_events,
+                                 const nlohmann::json& failures) {
   nlohmann::json out = nlohmann::json::array();
   std::set<int> used;
   std::map<std::string, std::pair<std::string, std::string>> last;  // process -> (kind, cause)
   for (const auto& e : plant_events) {
-    const std::string process = e.value("name", ""), kind = membership_kind(e.value("event", ""));
-    const double t_s = e.value("t_s", 0.0);
-    nlohmann::json ev = {
-        {"kind", kind}, {"process", process}, {"t_s", t_s}, {"wall_ms", e.value("wall_ms", 0.0)}};
+    const std::string& process = e.name;
+    const std::string kind = membership_kind(e.event);
+    const double t_s = e.t_s;
+    nlohmann::json ev = {{"kind", kind}, {"process", process}, {"t_s", t_s}, {"wall_ms", e.wall_ms}};
     std::string cause;
     if (const std::string action = action_of(kind); !action.empty()) {
       const int i = find_fault(failures, process, action, t_s, used);

@@ -8,6 +8,9 @@
 // "deadline"; a rejoin has the cause of the process's previous change. Free of DDS.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "records/plant_results.hpp"
 
 namespace maptr::deploy {
 
@@ -15,10 +18,11 @@ namespace maptr::deploy {
 /// -> "lease_lost", ...); an unknown record is its own kind.
 std::string membership_kind(const std::string& plant_event);
 
-/// plant_events: the plant's records ({name, event, t_s, wall_ms}); failures: the launcher's
+/// plant_events: the plant's records (plant.json membership_events); failures: the launcher's
 /// fault records ({target, action, at_s, wall_ms, origin[, skipped]}). Returns
 /// [{kind, process, t_s, wall_ms, cause[, after]}] in the plant's order; `after` (rejoined
 /// only) is the kind of the change it ends.
-nlohmann::json membership_events(const nlohmann::json& plant_events, const nlohmann::json& failures);
+nlohmann::json membership_events(const std::vector<records::MembershipEvent>& plant_events,
+                                 const nlohmann::json& failures);
 
 }  // namespace maptr::deploy

@@ -59,31 +59,38 @@ std::string sha256_of(const std::string& path) {
 }
 
 /// The figures of the run from the plant's results, the launcher's last tick standing in.
-void add_run_figures(nlohmann::json& s, const nlohmann::json& plant, const RunRecord& r) {
+void add_run_figures(nlohmann::json& s, const std::optional<records::PlantResults>& plant,
+                     const RunRecord& r) {
   const PlantState& last = r.last_tick;
-  s["sim_time_s"] = plant.value("sim_time_s", last.t);
+  // Without the plant's results, the launcher's last tick.
+  records::PlantResults p;
+  p.sim_time_s = last.t;
+  p.energy_J = last.energy_J;
+  p.active_agents = {last.active_L, last.active_R};
+  if (plant) p = *plant;
+  const nlohmann::json j = records::to_json(p);
+  s["sim_time_s"] = p.sim_time_s;
   s["wall_time_s"] = r.run_wall_s;
-  s["ticks"] = plant.value("ticks", 0);
-  s["real_time_factor"] = plant.value("sim_time_s", last.t) / std::max(1e-9, r.run_wall_s);
-  s["distance_m"] = plant.value("distance_m", 0.0);
-  s["energy_J"] = plant.value("energy_J", last.energy_J);
-  s["mileage_m_per_J"] =
-      plant.value("energy_J", 0.0) > 0 ? plant.value("distance_m", 0.0) / plant.value("energy_J", 1.0) : 0.0;
-  s["mean_active_agents"] = plant.value("mean_active_agents", 0.0);
-  s["active_agents"] =
-      plant.value("active_agents", nlohmann::json{{"L", last.active_L}, {"R", last.active_R}});
-  s["battery_discharge_mAh"] = plant.value("battery_discharge_mAh", nlohmann::json{{"L", 0}, {"R", 0}});
-  s["path"] = plant.value("path", nlohmann::json::object());
+  s["ticks"] = p.ticks;
+  s["real_time_factor"] = p.sim_time_s / std::max(1e-9, r.run_wall_s);
+  s["distance_m"] = p.distance_m;
+  s["energy_J"] = p.energy_J;
+  s["mileage_m_per_J"] = p.energy_J > 0 ? p.distance_m / p.energy_J : 0.0;
+  s["mean_active_agents"] = p.mean_active_agents;
+  s["active_agents"] = j["active_agents"];
+  s["battery_discharge_mAh"] = j["battery_discharge_mAh"];
+  s["path"] = plant ? j["path"] : nlohmann::json::object();
 }
 
 }  // namespace
 
-std::string final_status(const std::string& launch_status, const nlohmann::json& plant, const Child& pc) {
+std::string final_status(const std::string& launch_status, const std::optional<records::PlantResults>& plant,
+                         const Child& pc) {
   if (launch_status != "ok") return launch_status;
-  if (plant.empty())
+  if (!plant)
     return "aborted: the plant ended without results (exit " + std::to_string(pc.exit_code) + ", signal " +
            std::to_string(pc.signal) + ")";
-  return plant.value("status", "unknown");
+  return plant->status.empty() ? "unknown" : plant->status;
 }
 
 nlohmann::json level2_stats(const std::string& run_dir) {
@@ -126,7 +133,7 @@ nlohmann::json processes_json(const std::vector<Child>& kids) {
 
 nlohmann::json build_summary(const config::Scenario& sc, const std::string& project_root, const RunRecord& r,
                              const std::string& run_dir, const std::vector<Child>& kids) {
-  const nlohmann::json plant = records::read_json_object(records::plant_results_path(run_dir));
+  const std::optional<records::PlantResults> plant = records::read_plant_results(run_dir);
   nlohmann::json s;
   s["scenario"] = sc.name;
   s["scenario_file"] = scenario_file(sc.source, project_root);
@@ -143,26 +150,26 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["agent_start"] = r.agent_start;
   nlohmann::json failures = r.failures;
   // The agents' own faults, which the plant applied and recorded, among the others in time order.
-  const nlohmann::json agent_faults = plant.value("agent_faults", nlohmann::json::object());
-  for (const auto& f : agent_faults.value("faults", nlohmann::json::array())) {
+  for (const auto& f : plant ? plant->agent_faults.faults : std::vector<records::AgentFaultRecord>{}) {
     nlohmann::json e = f;
     e["action"] = "fault";
-    e["at_s"] = f.value("injected_s", 0.0);
+    e["at_s"] = f.injected_s;
     e["origin"] = "scheduled";
     e["energy_penalty_J"] = nullptr;  // against a fault-free twin: maptr experiment faults
     failures.push_back(e);
   }
   std::stable_sort(failures.begin(), failures.end(),
                    [](const nlohmann::json& a, const nlohmann::json& b) { return a.value("at_s", 0.0) < b.value("at_s", 0.0); });
-  const nlohmann::json plant_events = plant.value("membership_events", nlohmann::json::array());
+  const std::vector<records::MembershipEvent> plant_events =
+      plant ? plant->membership_events : std::vector<records::MembershipEvent>{};
   analyse_faults(failures, plant_events, run_dir + "/trace.csv", sc.robot.wheel_radius_m);
   s["failures"] = failures;
   s["membership_events"] = membership_events(plant_events, r.failures);
   if (r.chaos_seed >= 0) s["chaos_seed"] = r.chaos_seed;
-  s["plant"] = plant;
+  s["plant"] = plant ? records::to_json(*plant) : nlohmann::json::object();
   // Samples dropped as malformed, forged or from a wrong sender, by the process that dropped them;
   // the plant's late answers from their rightful sender are counted apart (plant.json late_samples).
-  nlohmann::json rejected = plant.value("rejected_by_process", nlohmann::json::object());
+  nlohmann::json rejected = plant ? nlohmann::json(plant->rejected_by_process) : nlohmann::json::object();
   rejected["launcher"] = r.launcher_rejected;
   s["rejected_samples"] = rejected;
   // The launcher's readiness: forged NodeReady samples, and stale ones from a process's earlier start.
@@ -170,8 +177,9 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   for (const auto& [kind, n] : r.ready_rejected) ready[kind] = n;
   s["rejected_ready"] = ready;
   // By kind, for the processes that count their own by kind (the plant and the launcher).
-  s["rejected_by_kind"] = {{"plant", plant.value("rejected_by_kind", nlohmann::json::object())},
-                           {"launcher", r.launcher_by_kind}};
+  s["rejected_by_kind"] = {
+      {"plant", plant ? nlohmann::json(plant->rejected_by_kind) : nlohmann::json::object()},
+      {"launcher", r.launcher_by_kind}};
   s["level2"] = level2_stats(run_dir);
   s["processes"] = processes_json(kids);
   if (!r.hosts.is_null()) s["hosts"] = r.hosts;
@@ -183,16 +191,14 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   return s;
 }
 
-nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded, const nlohmann::json& plant) {
+nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded,
+                               const std::optional<records::PlantResults>& plant) {
   if (recorded.empty()) return nullptr;
   nlohmann::json incomplete = nlohmann::json::object();
-  const nlohmann::json taken_by_topic = plant.value("answers_taken", nlohmann::json::object());
-  for (const auto& [topic, taken] : taken_by_topic.items()) {
+  for (const auto& [topic, taken] : plant ? plant->answers_taken : std::map<std::string, uint64_t>{}) {
     const auto it = recorded.find(topic);
-    if (it == recorded.end() || !taken.is_number_integer() || taken.get<long long>() < 0)
-      continue;  // a topic run.mcap does not record
-    if (it->second < taken.get<uint64_t>())
-      incomplete[topic] = {{"recorded", it->second}, {"taken_by_plant", taken.get<uint64_t>()}};
+    if (it == recorded.end()) continue;  // a topic run.mcap does not record
+    if (it->second < taken) incomplete[topic] = {{"recorded", it->second}, {"taken_by_plant", taken}};
   }
   return {{"recorded", recorded}, {"incomplete", incomplete}};
 }

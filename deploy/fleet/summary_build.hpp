@@ -6,12 +6,14 @@
 #include <cstdint>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "config/scenario.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/plant_clock.hpp"
+#include "records/plant_results.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -44,11 +46,12 @@ struct RunRecord {
 /// {"recorded": n, "taken_by_plant": m}}} for each topic of which run.mcap holds fewer messages
 /// than the plant used answers (every answer it used was sent to the recorder too); null without
 /// a recording.
-nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded, const nlohmann::json& plant);
+nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded,
+                               const std::optional<records::PlantResults>& plant);
 
 /// The run's status: the launcher's if it aborted, else the plant's ("unknown" without one),
 /// or an abort naming the plant's exit when the plant left no results.
-std::string final_status(const std::string& launch_status, const nlohmann::json& plant,
+std::string final_status(const std::string& launch_status, const std::optional<records::PlantResults>& plant,
                          const Child& plant_child);
 
 /// Level-2 figures from the groups' level2-<side>.csv (records::read_level2_log): decisions,

@@ -41,12 +41,17 @@ Child run_shell(const std::string& script, const std::string& dir) {
 }
 }  // namespace
 
+/// The plant's results as plant.json would give them.
+std::optional<maptr::records::PlantResults> results(const nlohmann::json& j) {
+  return maptr::records::plant_results_from_json(j, "plant.json");
+}
+
 TEST(FleetSummary, StatusRules) {
-  const nlohmann::json plant = {{"status", "ok"}, {"sim_time_s", 10.0}};
+  const auto plant = results({{"status", "ok"}, {"sim_time_s", 10.0}});
   EXPECT_EQ(final_status("ok", plant, plant_child(0, 0)), "ok");
-  EXPECT_EQ(final_status("ok", {{"status", "degraded: L"}}, plant_child(0, 0)), "degraded: L");
-  EXPECT_EQ(final_status("ok", {{"ticks", 3}}, plant_child(0, 0)), "unknown");
-  EXPECT_EQ(final_status("ok", nlohmann::json::object(), plant_child(-1, 9)),
+  EXPECT_EQ(final_status("ok", results({{"status", "degraded: L"}}), plant_child(0, 0)), "degraded: L");
+  EXPECT_EQ(final_status("ok", results({{"ticks", 3}}), plant_child(0, 0)), "unknown");
+  EXPECT_EQ(final_status("ok", std::nullopt, plant_child(-1, 9)),
             "aborted: the plant ended without results (exit -1, signal 9)");
   EXPECT_EQ(final_status("aborted: interrupted", plant, plant_child(0, 0)), "aborted: interrupted");
 }
@@ -188,8 +193,8 @@ TEST(FleetSummary, ABrokenLevel2LogIsReportedWithoutDecisions) {
 namespace {
 
 TEST(FleetSummary, ARecordingWithFewerAnswersThanThePlantUsedIsIncompleteAndSaidSo) {
-  const nlohmann::json plant = {
-      {"answers_taken", {{"maptr/agent_reply", 512000}, {"maptr/group", 2000}, {"maptr/central", 1000}}}};
+  const auto plant = results(
+      {{"answers_taken", {{"maptr/agent_reply", 512000}, {"maptr/group", 2000}, {"maptr/central", 1000}}}});
   // What a recording of the 512-agent fleet held once: most answers missing, the rest there;
   // repeated answers make the recorder's counts higher than the plant's.
   const std::map<std::string, uint64_t> recorded = {

@@ -109,7 +109,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
   in.rejected_by_kind = {{"forged", 2}, {"conflicting", 1}, {"late", 2}};
   in.loop_scheduling = "SCHED_FIFO 1 on CPU 1";
   const std::vector<plant::MembershipRecord> events = {{"L1", "died (launcher)", 5.0, 123.5}};
-  const auto j = plant::plant_report(core, in, events);
+  const auto j = maptr::records::to_json(plant::plant_results(core, in, events));
   std::set<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.insert(k);
   EXPECT_EQ(keys, (std::set<std::string>{"status",
