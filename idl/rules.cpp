@@ -46,9 +46,9 @@ bool side_tick(const SideTick& s, std::size_t per_side) {
 }  // namespace
 
 bool well_formed(const PlantTick& t, const FleetBounds& b) {
-  if (!finite_all({t.t(), t.dt(), t.x(), t.y(), t.theta(), t.v_x(), t.w(), t.energy_J(), t.distance_m()}))
+  if (!finite_all({t.t(), t.x(), t.y(), t.theta(), t.v_x(), t.w(), t.energy_J(), t.distance_m()}))
     return false;
-  if (t.run_state() > RUN_ABORTED || t.dt() <= 0 || t.central_stamp() < -1) return false;
+  if (t.run_state() > RUN_ABORTED || t.central_stamp() < -1) return false;
   for (const SideTick& s : t.sides())
     if (!side_tick(s, b.per_side)) return false;
   return t.paused().empty() || mask(t.paused(), 2 * b.per_side + 3);

@@ -27,7 +27,7 @@ inline constexpr std::size_t kMaxNameLength = 64;
 
 /// PlantTick: every number finite; battery and applied voltages not negative;
 /// active, live and wake one entry of 0 or 1 per agent of a side; n_active and relay_count at
-/// most per_side; group stamps and central stamp -1 or more; dt positive; a known run state;
+/// most per_side; group stamps and central stamp -1 or more; a known run state;
 /// paused empty or one entry per member (2 per_side + 3). Any: tick (ordering is the reader's).
 bool well_formed(const PlantTick& t, const FleetBounds& b);
 /// AgentReply: a known side, index below per_side, voltage, current and efficiency finite, a

@@ -171,7 +171,6 @@ void PlantLoop::publish(msg::RunState run_state) {
   msg::PlantTick& t = sent_;
   t.tick(static_cast<uint64_t>(core_.tick()));
   t.t(core_.t());
-  t.dt(sc_.dt());
   const auto& x = core_.state();
   t.x(x[model::kX]);
   t.y(x[model::kY]);

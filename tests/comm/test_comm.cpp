@@ -85,7 +85,6 @@ msg::PlantTick two_sided_tick() {
   msg::PlantTick t;
   t.tick(42);
   t.t(0.42);
-  t.dt(0.01);
   for (int s = 0; s < 2; ++s) {
     msg::SideTick& side = t.sides()[s];
     side.phidot(100.0 + s);

@@ -38,7 +38,6 @@ msg::PlantTick tick_sample() {
   msg::PlantTick t;
   t.tick(42);
   t.t(0.42);
-  t.dt(0.01);
   t.v_x(9.8);
   for (auto& s : t.sides()) {
     s.battery_V(fuzz::kBatteryV);

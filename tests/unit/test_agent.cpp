@@ -150,7 +150,6 @@ maptr::msg::PlantTick side_tick(long long k) {
   const auto assigned = [](long long j) { return (j / 37) % 3 == 0 || (j / 11) % 7 == 3; };
   msg::PlantTick t;
   t.tick(static_cast<uint64_t>(k));
-  t.dt(0.01);
   t.run_state(msg::RUN_RUNNING);
   t.central_stamp(k >= 800 && k < 1000 ? 799 : k - 1);
   for (int s = 0; s < 2; ++s) {

@@ -24,7 +24,6 @@ msg::FleetBounds bounds() {
 msg::PlantTick tick() {
   msg::PlantTick t;
   t.tick(5);
-  t.dt(0.01);
   t.central_stamp(-1);
   for (auto& s : t.sides()) {
     s.battery_V(24.0);
@@ -101,11 +100,11 @@ TEST(IdlRules, AGroupsFaultyFlagsAreAbsentOrAKnownDiagnosisPerAgent) {
   EXPECT_FALSE(msg::well_formed(g, bounds()));
 }
 
-TEST(IdlRules, TickNumbersStampsAndStep) {
-  for (double bad : {kNaN, kInf, 0.0, -0.01}) {
+TEST(IdlRules, TickNumbersAndStamps) {
+  for (double bad : {kNaN, kInf}) {
     auto t = tick();
-    t.dt(bad);
-    EXPECT_FALSE(msg::well_formed(t, bounds())) << "dt " << bad;
+    t.t(bad);
+    EXPECT_FALSE(msg::well_formed(t, bounds())) << "t " << bad;
   }
   auto t = tick();
   t.central_stamp(-2);

@@ -21,7 +21,6 @@ constexpr std::size_t kPerSide = 4;
 msg::PlantTick tick(unsigned long long k) {
   msg::PlantTick t;
   t.tick(k);
-  t.dt(0.01);
   for (auto& s : t.sides()) {
     s.battery_V(24.0);
     s.active(std::vector<uint8_t>{1, 1, 0, 0});

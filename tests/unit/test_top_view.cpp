@@ -20,7 +20,6 @@ msg::PlantTick tick(long long k, double dt, int per_side, msg::RunState st = msg
   msg::PlantTick t;
   t.tick(static_cast<uint64_t>(k));
   t.t(static_cast<double>(k) * dt);
-  t.dt(dt);
   t.run_state(st);
   for (auto& s : t.sides()) {
     s.live(std::vector<uint8_t>(static_cast<std::size_t>(per_side), 1));
