@@ -56,7 +56,7 @@ void GroupCore::start_level2(const GroupInput& in, GroupDecision& d, int& target
   p.step_s = c_.horizon_step_s;
   if (p.live <= 0) {  // nothing to solve: decided at once
     target = 0;
-    d.level2_status = kL2Infeasible;
+    d.level2.status = kL2Infeasible;
     ++ledger_.decisions;
     return;
   }
@@ -70,14 +70,15 @@ void GroupCore::apply_level2(GroupDecision& d, int& target) {
   pending_.reset();
   if (p.stale) return;
   const Level2Result& r = o.result;
-  d.level2_relaxed = r.n_relaxed;
   d.level2_ran = true;
-  d.level2_t_s = p.t_s;
-  d.level2_n_other = p.n_other;
-  d.ipopt_n_active = r.n_active;
-  d.solve_time_ms = r.solve_time_ms;
-  d.level2_status = !r.feasible ? kL2Infeasible : r.ipopt_status >= 0 ? kL2Ok : kL2Failed;
-  d.oracle_n_active = o.oracle_n_active;
+  d.level2.t_s = p.t_s;
+  d.level2.n_live = d.n_live;
+  d.level2.n_other = p.n_other;
+  d.level2.status = !r.feasible ? kL2Infeasible : r.ipopt_status >= 0 ? kL2Ok : kL2Failed;
+  d.level2.relaxed = r.n_relaxed;
+  d.level2.ipopt_n_active = r.n_active;
+  d.level2.oracle_n_active = o.oracle_n_active;
+  d.level2.solve_ms = r.solve_time_ms;
   target = r.feasible ? r.n_active : d.n_live;
   ++ledger_.decisions;
 }
@@ -100,6 +101,15 @@ int GroupCore::decide_count(const GroupInput& in, bool cruising, GroupDecision& 
   return std::min(target, d.n_live);
 }
 
+void GroupCore::accrue_wear(const GroupInput& in) {
+  // The assignment in force over [t_{k-1}, t_k] drove |v_side| dt each.
+  if (ledger_.last_t >= 0.0 && in.t > ledger_.last_t) {
+    const double dt = in.t - ledger_.last_t;
+    ledger_.accrue(in.active, std::fabs(in.phidot_side) * c_.robot.wheel_radius_m * dt, dt);
+  }
+  ledger_.last_t = in.t;
+}
+
 GroupDecision GroupCore::step(const GroupInput& measured_in) {
   const int n = c_.robot.per_side();
   // Faulty agents first: from here on a flagged agent is not live.
@@ -109,12 +119,7 @@ GroupDecision GroupCore::step(const GroupInput& measured_in) {
   if (diagnosis_)
     for (int j = 0; j < n; ++j)
       if (diagnosis_->flags()[static_cast<std::size_t>(j)]) in.live[static_cast<std::size_t>(j)] = 0;
-  // The assignment in force over [t_{k-1}, t_k] drove |v_side| dt each.
-  if (ledger_.last_t >= 0.0 && in.t > ledger_.last_t) {
-    const double dt = in.t - ledger_.last_t;
-    ledger_.accrue(in.active, std::fabs(in.phidot_side) * c_.robot.wheel_radius_m * dt, dt);
-  }
-  ledger_.last_t = in.t;
+  accrue_wear(in);
 
   GroupDecision d = last_;  // the last solve's diagnostics stay on the status topic
   d.level2_ran = false;
@@ -125,7 +130,7 @@ GroupDecision GroupCore::step(const GroupInput& measured_in) {
 
   if (c_.mode == GroupMode::kAll) {
     next = in.live;
-    d.level2_status = kL2None;
+    d.level2.status = kL2None;
   } else {
     bool realloc = false;
     const int target = decide_count(in, update_cruise(in), d, realloc, next);
@@ -151,6 +156,7 @@ GroupDecision GroupCore::step(const GroupInput& measured_in) {
   ledger_.assignment = next;
   d.active = next;
   d.n_active = count(next);
+  if (d.level2_ran) d.level2.n_target = d.n_active;  // what the side runs from the decision on
   d.decisions = ledger_.decisions;
   d.reallocations = ledger_.reallocations;
   d.faulty = diagnosis_ ? diagnosis_->flags() : std::vector<uint8_t>(static_cast<std::size_t>(n), 0);

@@ -75,14 +75,8 @@ struct GroupInput {
 struct GroupDecision {
   std::vector<uint8_t> active;  ///< assignment from tick k+1
   int n_active = 0, n_live = 0;
-  uint8_t level2_status = kL2None;  ///< Level2Status
-  double level2_relaxed = 0.0;      ///< the solver's relaxed N_a
-  int oracle_n_active = -1;         ///< exhaustive search's N_a (-1: not run)
-  double solve_time_ms = 0.0;
-  bool level2_ran = false;  ///< a Level-2 decision was applied at this tick
-  double level2_t_s = 0.0;  ///< s, time of the tick whose inputs that decision used
-  int level2_n_other = 0;   ///< the other side's count in those inputs
-  int ipopt_n_active = -1;  ///< the solver's integer choice (before the feasibility fallback)
+  Level2Decision level2;    ///< the last Level-2 decision (its status kL2None in mode all)
+  bool level2_ran = false;  ///< `level2` was applied at this tick
   uint64_t decisions = 0, reallocations = 0;
   std::vector<uint8_t> faulty;              ///< per agent: 0, or the Diagnosis it is isolated for
   std::vector<DiagnosisChange> diagnosed;   ///< flags raised or lowered at this tick
@@ -104,6 +98,8 @@ class GroupCore {
 
  private:
   bool update_cruise(const GroupInput& in);
+  /// The wear of the assignment in force over [t_{k-1}, t_k].
+  void accrue_wear(const GroupInput& in);
   /// Runs Level 2 if in cruise and due; returns the wanted N_a; fills d's Level-2 fields.
   int decide_count(const GroupInput& in, bool cruising, GroupDecision& d, bool& realloc,
                    const std::vector<uint8_t>& next);

@@ -9,6 +9,7 @@
 #include "config/scenario.hpp"
 #include "group/group_wire.hpp"
 #include "records/ledger_file.hpp"
+#include "records/level2_log.hpp"
 
 namespace maptr::group {
 
@@ -44,7 +45,7 @@ int GroupNode::run() {
     const control::GroupInput in = group_input(t, side_);
     const control::GroupDecision d = core_.step(in);
     if (d.ledger_due) records::save_ledger(ledger_path_, core_.ledger());
-    if (d.level2_ran && (d.level2_status == control::kL2Infeasible) != infeasible) {
+    if (d.level2_ran && (d.level2.status == control::kL2Infeasible) != infeasible) {
       infeasible = !infeasible;
       if (infeasible)
         log_->warn(
@@ -53,7 +54,7 @@ int GroupNode::run() {
       else
         log_->info("Level 2 feasible again at t={:.2f} s", in.t);
     }
-    if (d.level2_ran && l2) l2.write(level2_record(d));
+    if (d.level2_ran && l2) l2.write(d.level2);
     msg::GroupStatus st = group_status(t, side_, in, d, core_.ledger());
     for (const auto& ch : d.diagnosed) {
       const std::string name = config::agent_name(side_, ch.index);

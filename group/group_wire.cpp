@@ -5,18 +5,12 @@
 namespace maptr::group {
 
 namespace {
-/// The group core's Level-2 outcome (control::Level2Status) as the message carries it.
+// The message's Level-2 statuses are the core's codes.
+static_assert(msg::L2_NONE == control::kL2None && msg::L2_OK == control::kL2Ok &&
+              msg::L2_INFEASIBLE == control::kL2Infeasible && msg::L2_SOLVER_FAILED == control::kL2Failed);
+
 msg::Level2Status to_msg_level2(uint8_t s) {
-  switch (s) {
-    case control::kL2Ok:
-      return msg::L2_OK;
-    case control::kL2Infeasible:
-      return msg::L2_INFEASIBLE;
-    case control::kL2Failed:
-      return msg::L2_SOLVER_FAILED;
-    default:
-      return msg::L2_NONE;
-  }
+  return s <= control::kL2Failed ? static_cast<msg::Level2Status>(s) : msg::L2_NONE;
 }
 }  // namespace
 
@@ -51,20 +45,6 @@ control::GroupInput group_input(const msg::PlantTick& t, int side) {
   return in;
 }
 
-records::Level2Record level2_record(const control::GroupDecision& d) {
-  records::Level2Record r;
-  r.t_s = d.level2_t_s;
-  r.n_live = d.n_live;
-  r.n_other = d.level2_n_other;
-  r.status = d.level2_status;
-  r.relaxed = d.level2_relaxed;
-  r.ipopt_n_active = d.ipopt_n_active;
-  r.oracle_n_active = d.oracle_n_active;
-  r.n_target = d.n_active;
-  r.solve_ms = d.solve_time_ms;
-  return r;
-}
-
 msg::GroupStatus group_status(const msg::PlantTick& t, int side, const control::GroupInput& in,
                               const control::GroupDecision& d, const control::Ledger& ledger) {
   msg::GroupStatus st;
@@ -76,10 +56,10 @@ msg::GroupStatus group_status(const msg::PlantTick& t, int side, const control::
   st.n_active(static_cast<uint16_t>(d.n_active));
   st.n_live(static_cast<uint16_t>(d.n_live));
   st.n_other(static_cast<uint16_t>(in.n_other));
-  st.level2_status(to_msg_level2(d.level2_status));
-  st.level2_relaxed(d.level2_relaxed);
-  st.oracle_n_active(static_cast<int16_t>(d.oracle_n_active));
-  st.solve_time_ms(d.solve_time_ms);
+  st.level2_status(to_msg_level2(d.level2.status));
+  st.level2_relaxed(d.level2.relaxed);
+  st.oracle_n_active(static_cast<int16_t>(d.level2.oracle_n_active));
+  st.solve_time_ms(d.level2.solve_ms);
   st.decisions(d.decisions);
   st.reallocations(d.reallocations);
   st.faulty(d.faulty);

@@ -1,10 +1,9 @@
 #pragma once
 // The group controller's wire adapter: what group `side` reads from a PlantTick for its core, and
-// the GroupStatus and Level-2 log record its decision becomes (no DDS: the generated message
+// the GroupStatus its decision becomes (no DDS: the generated message
 // types only). The group node and the tests that step a core on ticks use this one map.
 #include "control/group_core.hpp"
 #include "idl/maptr.h"
-#include "records/level2_log.hpp"
 
 namespace maptr::group {
 
@@ -15,8 +14,5 @@ control::GroupInput group_input(const msg::PlantTick& t, int side);
 /// wear. `rejected` is left to the node.
 msg::GroupStatus group_status(const msg::PlantTick& t, int side, const control::GroupInput& in,
                               const control::GroupDecision& d, const control::Ledger& ledger);
-
-/// The Level-2 log record of a decision taken at this tick.
-records::Level2Record level2_record(const control::GroupDecision& d);
 
 }  // namespace maptr::group

@@ -13,8 +13,15 @@ std::vector<Level2Record> rows_of(const CsvFile& f) {
   for (const auto& c : cols) at.push_back(f.column(c.spec.name));
   std::vector<Level2Record> out(f.rows());
   for (std::size_t i = 0; i < f.rows(); ++i)
-    for (std::size_t k = 0; k < cols.size(); ++k) out[i].*cols[k].value = f.number(i, at[k]);
+    for (std::size_t k = 0; k < cols.size(); ++k) cols[k].set(out[i], f.number(i, at[k]));
   return out;
+}
+
+/// The column of member m, whatever its number type.
+template <typename T>
+Level2Column column(ColumnSpec spec, T Level2Record::*m) {
+  return {std::move(spec), [m](const Level2Record& r) { return static_cast<double>(r.*m); },
+          [m](Level2Record& r, double v) { r.*m = static_cast<T>(v); }};
 }
 
 std::vector<ColumnSpec> specs() {
@@ -26,15 +33,15 @@ std::vector<ColumnSpec> specs() {
 
 const std::vector<Level2Column>& level2_columns() {
   static const std::vector<Level2Column> cols = {
-      {{"t_s", "s", kReal}, &Level2Record::t_s},
-      {{"n_live", "", kCount}, &Level2Record::n_live},
-      {{"n_other", "", kCount}, &Level2Record::n_other},
-      {{"status", "", kCount}, &Level2Record::status},
-      {{"relaxed", "", kReal}, &Level2Record::relaxed},
-      {{"ipopt_n_active", "", kCount}, &Level2Record::ipopt_n_active},
-      {{"oracle_n_active", "", kCount}, &Level2Record::oracle_n_active},
-      {{"n_target", "", kCount}, &Level2Record::n_target},
-      {{"solve_ms", "ms", kReal}, &Level2Record::solve_ms}};
+      column({"t_s", "s", kReal}, &Level2Record::t_s),
+      column({"n_live", "", kCount}, &Level2Record::n_live),
+      column({"n_other", "", kCount}, &Level2Record::n_other),
+      column({"status", "", kCount}, &Level2Record::status),
+      column({"relaxed", "", kReal}, &Level2Record::relaxed),
+      column({"ipopt_n_active", "", kCount}, &Level2Record::ipopt_n_active),
+      column({"oracle_n_active", "", kCount}, &Level2Record::oracle_n_active),
+      column({"n_target", "", kCount}, &Level2Record::n_target),
+      column({"solve_ms", "ms", kReal}, &Level2Record::solve_ms)};
   return cols;
 }
 
@@ -44,7 +51,7 @@ std::string level2_log_path(const std::string& run_dir, int side) {
 
 std::string format_level2_record(const Level2Record& r) {
   std::string out;
-  for (const auto& c : level2_columns()) out += (out.empty() ? "" : ",") + format_value(c.spec, r.*c.value);
+  for (const auto& c : level2_columns()) out += (out.empty() ? "" : ",") + format_value(c.spec, c.get(r));
   return out + "\n";
 }
 

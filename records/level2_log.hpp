@@ -1,7 +1,9 @@
 #pragma once
 // level2-L.csv / level2-R.csv: every Level-2 decision of one group controller (appended: a
-// restarted controller continues its file). Status codes are control::Level2Status values.
+// restarted controller continues its file): one row per control::Level2Decision, status codes
+// control::Level2Status values.
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -10,23 +12,14 @@
 
 namespace maptr::records {
 
-/// One Level-2 decision.
-struct Level2Record {
-  double t_s = 0;               ///< simulated time of the decision, s
-  double n_live = 0;            ///< live agents of the side
-  double n_other = 0;           ///< active agents of the other side
-  double status = 0;            ///< a control::Level2Status code
-  double relaxed = 0;           ///< Ipopt's relaxed (continuous) optimum
-  double ipopt_n_active = -1;   ///< the integer Ipopt's optimum led to
-  double oracle_n_active = -1;  ///< the exhaustive search's choice, -1 when not checked
-  double n_target = 0;          ///< the N_a the side runs
-  double solve_ms = 0;          ///< Ipopt's solve time, ms
-};
+/// One Level-2 decision, a row of the log: the group core's own record.
+using Level2Record = control::Level2Decision;
 
-/// A column of the Level-2 log and where its value lives in a Level2Record.
+/// A column of the Level-2 log and how a Level2Record gives and takes its value.
 struct Level2Column {
   ColumnSpec spec;
-  double Level2Record::*value;
+  std::function<double(const Level2Record&)> get;
+  std::function<void(Level2Record&, double)> set;
 };
 
 /// The columns of level2-<side>.csv, in file order.

@@ -28,7 +28,7 @@ nlohmann::json level2_side(const std::vector<records::Level2Record>& log) {
     if (status == control::kL2Infeasible) ++infeasible;
     if (status == control::kL2Ok && d.oracle_n_active >= 0) {
       ++checked;
-      if (static_cast<int>(d.ipopt_n_active) != static_cast<int>(d.oracle_n_active)) ++differs;
+      if (d.ipopt_n_active != d.oracle_n_active) ++differs;
     }
   }
   nlohmann::json s = {{"decisions", ms.size()},

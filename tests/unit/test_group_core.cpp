@@ -84,7 +84,7 @@ TEST(GroupCore, ModeAllRunsEveryLiveAgent) {
     ASSERT_EQ(d.active, s.in.live) << k;
     ASSERT_EQ(d.n_active, kPerSide - 1);
     ASSERT_FALSE(d.level2_ran);
-    ASSERT_EQ(d.level2_status, kL2None);
+    ASSERT_EQ(d.level2.status, kL2None);
   }
 }
 
@@ -101,11 +101,11 @@ TEST(GroupCore, EveryLiveAgentRunsUntilNearTheReferenceThenLevel2Decides) {
   // keep them all).
   const GroupDecision entry = s.step(9.6, 10.0);
   ASSERT_TRUE(entry.level2_ran);
-  EXPECT_EQ(entry.n_active, entry.oracle_n_active);
+  EXPECT_EQ(entry.n_active, entry.level2.oracle_n_active);
   // At the reference, its next decision (1 s later) keeps fewer agents.
   GroupDecision d;
   while (!(d = s.step(10.0, 10.0)).level2_ran) ASSERT_EQ(d.n_active, entry.n_active);
-  EXPECT_EQ(d.n_active, d.oracle_n_active);
+  EXPECT_EQ(d.n_active, d.level2.oracle_n_active);
   EXPECT_LT(d.n_active, kPerSide);
   // 10 % below: still cruising (the hysteresis band); the count holds until the next decision.
   for (int k = 0; k < 50; ++k) EXPECT_EQ(s.step(9.0, 10.0).n_active, d.n_active);
@@ -139,7 +139,7 @@ TEST(GroupCore, Level3ReallocatesWhenTheCountChanges) {
   GroupDecision d;
   while (!(d = s.step(5.0, 5.0)).level2_ran) ASSERT_EQ(d.active, agents({0, 1}));
   EXPECT_NEAR(s.in.t, 2.0, 1e-9);
-  EXPECT_EQ(d.oracle_n_active, 3);
+  EXPECT_EQ(d.level2.oracle_n_active, 3);
   EXPECT_EQ(d.n_active, 3);
   EXPECT_EQ(d.active, agents({2, 3, 4}));  // the three least worn
   EXPECT_EQ(d.reallocations, 2u);
@@ -240,11 +240,14 @@ TEST(GroupCore, DeferredDecisionUsesTheInputsOfItsStartTickAndActsDTicksLater) {
     const GroupDecision& at_start = immediate[static_cast<std::size_t>(tick - 10)];
     ASSERT_TRUE(at_start.level2_ran) << tick;
     // The same problem (tick k's inputs), solved by a solver with the same history.
-    EXPECT_EQ(d.ipopt_n_active, at_start.ipopt_n_active) << tick;
-    EXPECT_EQ(d.level2_relaxed, at_start.level2_relaxed) << tick;
-    EXPECT_EQ(d.oracle_n_active, at_start.oracle_n_active) << tick;
-    EXPECT_NEAR(d.level2_t_s, 0.01 * static_cast<double>(tick - 10), 1e-12);
+    EXPECT_EQ(d.level2.ipopt_n_active, at_start.level2.ipopt_n_active) << tick;
+    EXPECT_EQ(d.level2.relaxed, at_start.level2.relaxed) << tick;
+    EXPECT_EQ(d.level2.oracle_n_active, at_start.level2.oracle_n_active) << tick;
+    EXPECT_NEAR(d.level2.t_s, 0.01 * static_cast<double>(tick - 10), 1e-12);
     EXPECT_EQ(d.n_active, at_start.n_active) << tick;
+    // The decision's record says what the side runs from it and how many were live then.
+    EXPECT_EQ(d.level2.n_target, d.n_active) << tick;
+    EXPECT_EQ(d.level2.n_live, d.n_live) << tick;
   }
   EXPECT_EQ(applied, 4);
   ASSERT_EQ(rec.starts, (std::vector<long long>{0, 100, 200, 300}));
@@ -259,7 +262,7 @@ TEST(GroupCore, UntilTheFirstDeferredDecisionEveryLiveAgentRuns) {
   for (int k = 0; k < 5; ++k) ASSERT_EQ(s.step(10.0, 10.0).n_active, kPerSide) << k;
   const GroupDecision d = s.step(10.0, 10.0);  // tick 5: the decision of tick 0
   ASSERT_TRUE(d.level2_ran);
-  EXPECT_EQ(d.n_active, d.oracle_n_active);
+  EXPECT_EQ(d.n_active, d.level2.oracle_n_active);
   EXPECT_LT(d.n_active, kPerSide);
 }
 
