@@ -3,8 +3,8 @@
 #include <unistd.h>
 
 #include "agent/agent_input.hpp"
-#include "comm/follower.hpp"
-#include "comm/side.hpp"
+#include "comm/lockstep/follower.hpp"
+#include "comm/lockstep/side.hpp"
 #include "config/core_configs.hpp"
 #include "config/scenario.hpp"
 

@@ -5,8 +5,8 @@
 
 #include <memory>
 
-#include "comm/process.hpp"
 #include "agent/misbehaviour.hpp"
+#include "comm/dds/process.hpp"
 
 namespace maptr::agent {
 

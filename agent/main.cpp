@@ -1,10 +1,10 @@
 // maptr_agent: one wheel-motor agent (Level 1). Usage: maptr_agent --id L3 --config ... --run-dir ...
-// `maptr_agent --zygote FD` serves the launcher as a zygote (comm/zygote.hpp): it forks loaded
+// `maptr_agent --zygote FD` serves the launcher as a zygote (comm/posix/zygote.hpp): it forks loaded
 // copies of itself, each of which runs as `maptr_agent --id ...` would.
 #include <iostream>
 
 #include "agent/agent_node.hpp"
-#include "comm/zygote.hpp"
+#include "comm/posix/zygote.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #include "central/central_node.hpp"
 
-#include "comm/follower.hpp"
+#include "comm/lockstep/follower.hpp"
 #include "config/core_configs.hpp"
 
 namespace maptr::central {

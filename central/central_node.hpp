@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "comm/process.hpp"
+#include "comm/dds/process.hpp"
 #include "control/central_core.hpp"
 
 namespace maptr::central {

@@ -133,7 +133,7 @@ struct Scenario {
   std::string record = "all";          ///< run.mcap: "all" topics, "plant" (ticks, gates, events), "none"
   std::string record_compression = "zstd";  ///< run.mcap's chunks: "none", "lz4" or "zstd"
   /// "auto" (on in ec, off in all), "true" or "false": an agent takes only the ticks it answers
-  /// (comm/tick_filter.hpp). In `all` every agent answers every tick, so a filter there only
+  /// (comm/lockstep/tick_filter.hpp). In `all` every agent answers every tick, so a filter there only
   /// costs the plant its evaluation and every tick its filter signatures (BENCHMARKS.md).
   std::string tick_filter = "auto";
   /// SCHED_FIFO priority of the plant's lock-step thread (comm::make_thread_realtime), which

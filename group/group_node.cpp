@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "comm/follower.hpp"
+#include "comm/lockstep/follower.hpp"
 #include "config/core_configs.hpp"
 #include "config/scenario.hpp"
 #include "group/group_wire.hpp"

@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "comm/process.hpp"
+#include "comm/dds/process.hpp"
 #include "control/group_core.hpp"
 #include "group/level2_worker.hpp"
 

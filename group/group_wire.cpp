@@ -1,6 +1,6 @@
 #include "group/group_wire.hpp"
 
-#include "comm/side.hpp"
+#include "comm/lockstep/side.hpp"
 
 namespace maptr::group {
 

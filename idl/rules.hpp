@@ -2,7 +2,7 @@
 // The validity rule of every field of every message of idl/maptr.idl, written once: what a
 // reader may take without looking further (ranges, finiteness, lengths, known enum values).
 // Each taker applies the rule of the type it takes (the plant: plant/validation.hpp, which
-// adds the battery's voltage; followers: comm/tick_check.hpp; the launcher: NodeReady and
+// adds the battery's voltage; followers: comm/lockstep/tick_check.hpp; the launcher: NodeReady and
 // FaultGate; the plant: MembershipEvent and Control). Free of DDS and of the node.
 //
 // Fields a rule does not restrict are listed with "any" beside their type below, so that a new

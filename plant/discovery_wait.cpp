@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "comm/fleet_ids.hpp"
+#include "comm/dds/fleet_ids.hpp"
 #include "config/scenario.hpp"
 
 namespace maptr::plant {

@@ -1,7 +1,7 @@
 #pragma once
 // What the plant still waits for before the fleet is matched: a line for the log when
 // discovery makes no progress, naming the members whose endpoints the plant has not matched.
-// Pure: the caller gives the participant ids (comm/fleet_ids.hpp) behind its matched endpoints.
+// Pure: the caller gives the participant ids (comm/dds/fleet_ids.hpp) behind its matched endpoints.
 #include <string>
 #include <vector>
 

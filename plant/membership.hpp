@@ -44,7 +44,7 @@ struct Member {
   bool writer_known = false;
   bool rejoining = false;  ///< restarted or resumed (launcher): expected from the next tick, not yet heard
   bool paused = false;     ///< paused by the launcher: not waited for, its lease loss expected
-  bool excused = false;    ///< an idle agent not due to answer the current tick (comm/lockstep.hpp)
+  bool excused = false;    ///< an idle agent not due to answer the current tick (comm/lockstep/lockstep.hpp)
 };
 
 /// One membership change: who, what, simulated time (s) and wall clock (ms since the epoch).

@@ -4,8 +4,8 @@
 #include <fstream>
 #include <thread>
 
-#include "comm/fleet_ids.hpp"
-#include "comm/lockstep.hpp"
+#include "comm/dds/fleet_ids.hpp"
+#include "comm/lockstep/lockstep.hpp"
 #include "config/scenario.hpp"
 #include "control/diagnosis.hpp"
 #include "model/kinematics.hpp"
@@ -133,7 +133,7 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
 
 bool PlantLoop::collect() {
   const long long k = core_.tick();
-  // An idle agent (not assigned in tick k) answers only when its slot is due (comm/lockstep.hpp).
+  // An idle agent (not assigned in tick k) answers only when its slot is due (comm/lockstep/lockstep.hpp).
   membership_.begin_tick([&](int side, int index) {
     return sent_.sides()[side].active()[index] == 0 && !comm::idle_answer_due(k, side, index, per_side_);
   });

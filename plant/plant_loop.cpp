@@ -5,9 +5,9 @@
 #include <thread>
 #include <tuple>
 
-#include "comm/fleet_guid.hpp"
-#include "comm/lockstep.hpp"
-#include "comm/tick_filter.hpp"
+#include "comm/dds/fleet_guid.hpp"
+#include "comm/lockstep/lockstep.hpp"
+#include "comm/lockstep/tick_filter.hpp"
 #include "config/core_configs.hpp"
 #include "config/scenario.hpp"
 #include "idl/rules.hpp"
@@ -53,7 +53,7 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
       barrier_(c.deadline_s(args.scenario.robot.agents), c.resend_s) {
   tick_match_.only_fleet(args.dds.fleet_id);  // readers outside the fleet (a watcher) are no members
   // With the tick filter the writer evaluates each agent's filter and sends an agent only the
-  // ticks it needs (comm/tick_filter.hpp).
+  // ticks it needs (comm/lockstep/tick_filter.hpp).
   if (sc_.uses_tick_filter()) comm::register_tick_filter(p_.raw(), &filter_gate_);
   w_tick_ = p_.writer(p_.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &tick_match_,
                       sc_.uses_tick_filter() ? comm::tick_filter_capacity(sc_.robot.agents) : 0);

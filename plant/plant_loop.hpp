@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "comm/process.hpp"
-#include "comm/tick_filter.hpp"
+#include "comm/dds/process.hpp"
+#include "comm/lockstep/tick_filter.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "plant/barrier.hpp"
 #include "plant/fault_gate.hpp"
@@ -91,7 +91,7 @@ class PlantLoop {
   SampleLimits limits() const;
   void log_membership();
   /// True when `writer` belongs to the process whose first participant id is `base_id`
-  /// (comm/fleet_ids.hpp) in this fleet; always, without a fleet id.
+  /// (comm/dds/fleet_ids.hpp) in this fleet; always, without a fleet id.
   bool sent_by(const Handle& writer, int base_id) const;
   /// What the plant has matched so far, naming the members it has not (plant/discovery_wait.hpp).
   std::string discovery_view_report(int tick_readers) const;

@@ -8,7 +8,7 @@
 
 #include <memory>
 
-#include "comm/process.hpp"
+#include "comm/dds/process.hpp"
 #include "plant/plant_config.hpp"
 
 namespace maptr::plant {

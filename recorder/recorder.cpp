@@ -5,7 +5,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "comm/fleet_guid.hpp"
+#include "comm/dds/fleet_guid.hpp"
 #include "idl/idl_text.hpp"
 
 namespace maptr::recorder {

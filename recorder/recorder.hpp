@@ -1,6 +1,6 @@
 #pragma once
 // The fleet's recorder: a read-only DDS participant whose readers take every sample on the
-// fleet's topics as raw CDR (comm/raw_type.hpp) and a thread that writes them to run.mcap
+// fleet's topics as raw CDR (comm/dds/raw_type.hpp) and a thread that writes them to run.mcap
 // (records/mcap.hpp), each with its log time (wall clock when taken, ns since the Unix epoch)
 // and its publish time (the writer's source timestamp). The readers keep a history deeper than
 // one tick's burst of replies and hand samples over at once, so the recorder neither slows the
@@ -24,8 +24,8 @@
 #include <thread>
 #include <vector>
 
-#include "comm/dds.hpp"
-#include "comm/raw_type.hpp"
+#include "comm/dds/dds.hpp"
+#include "comm/dds/raw_type.hpp"
 #include "recorder/sample_verdict.hpp"
 #include "records/mcap.hpp"
 
@@ -73,7 +73,7 @@ class Recorder {
   bool wait_matched(const std::map<std::string, int>& writers,
                     std::chrono::steady_clock::time_point deadline);
   std::string missing() const { return missing_; }
-  /// The writers of `topic` the recorder has matched (their GUIDs, comm/fleet_guid.hpp).
+  /// The writers of `topic` the recorder has matched (their GUIDs, comm/dds/fleet_guid.hpp).
   std::vector<eprosima::fastrtps::rtps::InstanceHandle_t> matched_writers(const std::string& topic) const;
   /// Leaves the domain, writes what is left and closes the file (once).
   void stop();

@@ -9,8 +9,8 @@
 #include <thread>
 #include <vector>
 
-#include "comm/checked_type.hpp"
-#include "comm/raw_type.hpp"
+#include "comm/dds/checked_type.hpp"
+#include "comm/dds/raw_type.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "recorder/recorder.hpp"
 

@@ -12,7 +12,7 @@
 #include <functional>
 #include <string>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "records/mcap.hpp"
 
 namespace maptr::recorder {

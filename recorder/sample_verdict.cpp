@@ -1,7 +1,7 @@
 #include "recorder/sample_verdict.hpp"
 
-#include "comm/checked_type.hpp"
-#include "comm/raw_type.hpp"
+#include "comm/dds/checked_type.hpp"
+#include "comm/dds/raw_type.hpp"
 #include "config/scenario.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "idl/rules.hpp"

@@ -14,18 +14,25 @@ import os
 import re
 import sys
 
-# Layer of each top-level folder: an include may point to the same or a lower layer.
+# Layer of each folder (its first level, or its first two where listed): an include may point
+# to the same or a lower layer.
 LAYERS = {
     "model": 0,
     "control": 1, "sim": 1,
     "config": 2, "records": 2, "idl": 2,
-    "comm": 3,
+    "comm/posix": 3.0, "comm/dds": 3.1, "comm/lockstep": 3.2,
     "agent": 4, "group": 4, "central": 4, "plant": 4,
     "deploy": 5, "tools": 5,
 }
 SOURCE = re.compile(r"\.(cpp|hpp|h|cc)$")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 CONTROL = re.compile(r"^\s*(if|for|while|switch|catch|else|do|try)\b")
+
+
+def layer(path):
+    """The layer of a file or include path: its first two folders if listed, else its first."""
+    parts = path.replace(os.sep, "/").split("/")
+    return LAYERS.get("/".join(parts[:2]), LAYERS.get(parts[0]))
 
 
 def sources(root):
@@ -92,12 +99,12 @@ def main():
         text = open(os.path.join(root, rel), encoding="utf-8", errors="replace").read()
         files.append((len(text.splitlines()), rel))
         fns += [(n, rel, line, length) for n, line, length in functions(rel, text)]
-        me = LAYERS.get(rel.split(os.sep)[0])
+        me = layer(rel)
         for no, line in enumerate(text.splitlines(), 1):
             m = INCLUDE.match(line)
             if not m or me is None:
                 continue
-            them = LAYERS.get(m.group(1).split("/")[0])
+            them = layer(m.group(1))
             if them is not None and them > me:
                 up.append(f"{rel}:{no} -> {m.group(1)}")
     files.sort(reverse=True)

@@ -4,17 +4,16 @@
 //
 //   maptr_verdict_cost RUN/run.mcap [--repeat N]
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <set>
 #include <vector>
 
-#include "comm/dds.hpp"
-#include "records/mcap.hpp"
+#include "comm/dds/dds.hpp"
 #include "recorder/recorder.hpp"
 #include "recorder/sample_verdict.hpp"
+#include "records/mcap.hpp"
 
 namespace mcap = maptr::records::mcap;
 namespace rec = maptr::recorder;

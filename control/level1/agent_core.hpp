@@ -12,7 +12,7 @@
 //                               then coast (open circuit)
 //   central silent longer than central_timeout_s: ramp the last reference to zero at
 //                               stop_decel_mps2 / r [rad/s^2] (a safe stop), still obeying the group
-//   ticks skipped (the tick filter, comm/tick_check.hpp: the agent was idle with a fresh group
+//   ticks skipped (the tick filter, comm/lockstep/tick_check.hpp: the agent was idle with a fresh group
 //   and central in each, or it did not run yet): the agent goes on from tick k-1's speed and
 //   reference carried in tick k, exactly as if it had stepped through them idle
 #include <cstdint>

@@ -4,7 +4,7 @@
 #include <ctime>
 #include <filesystem>
 
-#include "comm/environment.hpp"
+#include "comm/posix/environment.hpp"
 
 namespace maptr::deploy::cli {
 

@@ -10,7 +10,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "deploy/cli/paths.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
 #include "deploy/fleet/hosts.hpp"

@@ -16,7 +16,7 @@
 #include <set>
 #include <thread>
 
-#include "comm/shm_files.hpp"
+#include "comm/posix/shm_files.hpp"
 #include "config/scenario.hpp"
 #include "deploy/cli/paths.hpp"
 #include "deploy/cli/soak_leftovers.hpp"

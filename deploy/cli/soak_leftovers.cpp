@@ -8,8 +8,8 @@
 #include <fstream>
 #include <thread>
 
-#include "comm/environment.hpp"
-#include "comm/shm_files.hpp"
+#include "comm/posix/environment.hpp"
+#include "comm/posix/shm_files.hpp"
 #include "deploy/fleet/shm_segments.hpp"
 #include "deploy/fleet/summary_build.hpp"
 #include "records/run_files.hpp"

@@ -1,9 +1,5 @@
 #include "deploy/fleet/children.hpp"
 
-#include "comm/environment.hpp"
-#include "deploy/fleet/hosts.hpp"
-#include "deploy/fleet/zygote_client.hpp"
-
 #include <fcntl.h>
 #include <pthread.h>
 #include <sched.h>
@@ -20,6 +16,10 @@
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include "comm/posix/environment.hpp"
+#include "deploy/fleet/hosts.hpp"
+#include "deploy/fleet/zygote_client.hpp"
 
 extern char** environ;
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "comm/fleet_ids.hpp"
+#include "comm/dds/fleet_ids.hpp"
 
 namespace maptr::deploy::fleet {
 

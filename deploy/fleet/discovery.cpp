@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
-#include "comm/dds.hpp"
-#include "comm/udp_ports.hpp"
+#include "comm/dds/dds.hpp"
+#include "comm/posix/udp_ports.hpp"
 
 namespace maptr::deploy::fleet {
 

@@ -11,9 +11,9 @@
 #include <cstdio>
 #include <thread>
 
-#include "comm/dds.hpp"
-#include "comm/environment.hpp"
-#include "comm/process.hpp"
+#include "comm/dds/dds.hpp"
+#include "comm/dds/process.hpp"
+#include "comm/posix/environment.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"MAPTR discovery server (started and stopped by `maptr run`)"};

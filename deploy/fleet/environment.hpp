@@ -6,11 +6,11 @@
 #include <optional>
 #include <string>
 
-#include "comm/environment.hpp"
+#include "comm/posix/environment.hpp"
 
 namespace maptr::deploy::fleet {
 
-/// MAPTR_DDS_LOG: Fast DDS's log level in every process (comm/dds.hpp, DdsOptions::dds_log).
+/// MAPTR_DDS_LOG: Fast DDS's log level in every process (comm/dds/dds.hpp, DdsOptions::dds_log).
 inline constexpr const char* kDdsLogEnv = comm::kEnvDdsLog;
 
 /// The first variable with a value outside its set, as "NAME=VALUE: expected ...", or nothing.

@@ -10,11 +10,11 @@
 #include <fstream>
 #include <random>
 
-#include "comm/environment.hpp"
-#include "comm/fleet_guid.hpp"
-#include "comm/fleet_ids.hpp"
-#include "comm/raw_type.hpp"
-#include "comm/shm_files.hpp"
+#include "comm/dds/fleet_guid.hpp"
+#include "comm/dds/fleet_ids.hpp"
+#include "comm/dds/raw_type.hpp"
+#include "comm/posix/environment.hpp"
+#include "comm/posix/shm_files.hpp"
 #include "deploy/fleet/secure_domain.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
 #include "records/run_files.hpp"
@@ -63,7 +63,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   if (!o.secure) make_discovery_servers();  // a secure domain has no discovery server (simple discovery)
   dds_.participant_id = comm::kLauncherParticipantId;
   // The fleet id makes every participant's GUID prefix say which process of this fleet it is
-  // (comm/fleet_guid.hpp): followers take ticks only from the plant's writer.
+  // (comm/dds/fleet_guid.hpp): followers take ticks only from the plant's writer.
   dds_.fleet_id = std::random_device{}() | 1u;
   // The plant's participant, known from the fleet id and its participant id: its ticks and gates
   // are the only ones the launcher follows (an external plant is started with the same ids).

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/config.hpp"
 #include "deploy/fleet/control_fifo.hpp"

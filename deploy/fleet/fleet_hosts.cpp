@@ -4,7 +4,7 @@
 
 #include <csignal>
 
-#include "comm/environment.hpp"
+#include "comm/posix/environment.hpp"
 #include "deploy/fleet/fleet.hpp"
 
 namespace maptr::deploy::fleet {

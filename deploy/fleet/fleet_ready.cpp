@@ -3,7 +3,7 @@
 // A process that does not get ready in time is started again.
 #include <algorithm>
 
-#include "comm/fleet_guid.hpp"
+#include "comm/dds/fleet_guid.hpp"
 #include "deploy/fleet/fleet.hpp"
 #include "idl/rules.hpp"
 

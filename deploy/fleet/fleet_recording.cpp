@@ -2,9 +2,9 @@
 // children; the start waits until it has matched every lock-step writer.
 #include <algorithm>
 
-#include "comm/fleet_guid.hpp"
-#include "comm/fleet_ids.hpp"
-#include "comm/shm_files.hpp"
+#include "comm/dds/fleet_guid.hpp"
+#include "comm/dds/fleet_ids.hpp"
+#include "comm/posix/shm_files.hpp"
 #include "deploy/fleet/fleet.hpp"
 #include "records/compression.hpp"
 
@@ -14,7 +14,7 @@ void Fleet::start_recorder() {
   const auto scope = recorder::parse_scope(sc_.record);
   if (scope == recorder::Scope::kNone) return;
   // The recorder's participant takes the launcher's id in the second id window: no process of
-  // the fleet ever has it (comm/fleet_ids.hpp).
+  // the fleet ever has it (comm/dds/fleet_ids.hpp).
   comm::DdsOptions o = dds_;
   const int id = comm::fleet_stride(sc_.robot.agents) + comm::kLauncherParticipantId;
   o.participant_id = id <= comm::rtps_max_participant_id(o_.domain) ? id : -1;
@@ -65,7 +65,7 @@ void Fleet::await_recorder() {
 
 bool Fleet::rematch_unrecorded() {
   // written_by() names a writer by the fleet id in its GUID prefix, or on a secure domain by the
-  // certificate that prefix was derived from (comm/fleet_guid.hpp).
+  // certificate that prefix was derived from (comm/dds/fleet_guid.hpp).
   const auto seen = recorder_->matched_writers(comm::topic::kAgentReply);
   std::vector<Child*> unseen;
   for (auto& c : kids_) {

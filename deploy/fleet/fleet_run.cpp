@@ -2,7 +2,7 @@
 #include <csignal>
 #include <cstdio>
 
-#include "comm/side.hpp"
+#include "comm/lockstep/side.hpp"
 #include "deploy/fleet/fleet.hpp"
 #include "idl/rules.hpp"
 

@@ -1,17 +1,17 @@
 #include "deploy/fleet/launcher.hpp"
 
-#include "comm/dds.hpp"
-#include "comm/shm_files.hpp"
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "comm/dds/dds.hpp"
+#include "comm/posix/shm_files.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/config.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
 #include "deploy/fleet/fleet.hpp"
 #include "deploy/report/run_plot.hpp"
 #include "records/run_files.hpp"
-
-#include <filesystem>
-#include <fstream>
-#include <memory>
 
 namespace maptr::deploy {
 

@@ -1,7 +1,7 @@
 #pragma once
 // The launcher's view of simulated time, taken only from the plant: ticks and fault gates
 // count only when their writer belongs to the plant's participant (the GUID prefix the fleet id
-// gives the plant: comm/fleet_guid.hpp). A sample from any other participant on maptr/tick or
+// gives the plant: comm/dds/fleet_guid.hpp). A sample from any other participant on maptr/tick or
 // maptr/gate (a forgery, or a stale plant) is counted and ignored. Pure: writers are named by
 // their GUID prefix.
 #include <algorithm>

@@ -5,7 +5,7 @@
 #include <iterator>
 #include <vector>
 
-#include "comm/environment.hpp"
+#include "comm/posix/environment.hpp"
 
 namespace maptr::deploy::fleet {
 

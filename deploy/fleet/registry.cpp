@@ -11,7 +11,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "comm/environment.hpp"
+#include "comm/posix/environment.hpp"
 #include "deploy/fleet/control_fifo.hpp"
 
 namespace maptr::deploy::fleet {

@@ -1,5 +1,5 @@
 #pragma once
-// The files of a secure domain (`maptr run --secure`, comm/security.hpp), made with the openssl
+// The files of a secure domain (`maptr run --secure`, comm/dds/security.hpp), made with the openssl
 // command-line tool in one folder (mode 0700): a private CA (EC P-256 key, self-signed
 // certificate), the governance document signed by the CA, and per identity a private key
 // (mode 0600), a certificate the CA signed (subject CN=NAME) and a permissions document the CA
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "comm/security.hpp"
+#include "comm/dds/security.hpp"
 
 namespace maptr::deploy::fleet {
 

@@ -2,8 +2,8 @@
 
 #include <set>
 
-#include "comm/dds.hpp"
-#include "comm/shm_files.hpp"
+#include "comm/dds/dds.hpp"
+#include "comm/posix/shm_files.hpp"
 #include "deploy/fleet/shm_segments.hpp"
 
 namespace maptr::deploy::fleet {

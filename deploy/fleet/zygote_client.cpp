@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <thread>
 
-#include "comm/zygote.hpp"
+#include "comm/posix/zygote.hpp"
 
 namespace maptr::deploy::fleet {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The launcher's side of the agents' zygote (comm/zygote.hpp): one `maptr_agent --zygote 3`
+// The launcher's side of the agents' zygote (comm/posix/zygote.hpp): one `maptr_agent --zygote 3`
 // started like any child, to which the launcher sends a request per agent to start, and gets
 // back the pid of a copy that is the launcher's own child from then on. The launcher becomes a
 // child subreaper for that. A zygote that has died or stopped answering is dropped, and its
@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "comm/environment.hpp"
+#include "comm/posix/environment.hpp"
 #include "deploy/fleet/children.hpp"
 
 namespace maptr::deploy::fleet {

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <vector>
 
-#include "comm/environment.hpp"
+#include "comm/posix/environment.hpp"
 #include "config/scenario.hpp"
 #include "deploy/fleet/config.hpp"
 #include "plant/plant_config.hpp"
@@ -98,7 +98,7 @@ constexpr const char* kSummaryHead =
 
 constexpr const char* kEnvironmentHead =
     "# Environment variables\n\n"
-    "Every environment variable MAPTR reads, generated from the table in `comm/environment.hpp` by\n"
+    "Every environment variable MAPTR reads, generated from the table in `comm/posix/environment.hpp` by\n"
     "`maptr fields --environment --markdown` (do not edit by hand: a unit test fails when this file\n"
     "differs from the table, and another when the product names a `MAPTR_*` variable the table\n"
     "lacks). A user may set those marked `user` (`maptr run` refuses a `MAPTR_DDS_LOG` or\n"

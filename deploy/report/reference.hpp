@@ -1,7 +1,7 @@
 #pragma once
 // The references a user reads instead of the source: every scenario field (config's field
 // table), every summary.json key (records' key table) and every environment variable
-// (comm/environment.hpp), as text for the terminal or as a markdown table. `maptr fields` prints
+// (comm/posix/environment.hpp), as text for the terminal or as a markdown table. `maptr fields` prints
 // them; docs/SCENARIO.md, docs/SUMMARY.md and docs/ENVIRONMENT.md are generated from them (a unit
 // test fails when a committed file differs).
 #include <string>

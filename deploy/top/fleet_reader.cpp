@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "comm/fleet_guid.hpp"
-#include "comm/shm_files.hpp"
-#include "comm/udp_ports.hpp"
+#include "comm/dds/fleet_guid.hpp"
+#include "comm/posix/shm_files.hpp"
+#include "comm/posix/udp_ports.hpp"
 #include "config/scenario.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "records/run_files.hpp"

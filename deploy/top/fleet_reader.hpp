@@ -24,7 +24,7 @@
 #include <memory>
 #include <string>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "deploy/top/fleet_view.hpp"
 
 namespace maptr::top {

@@ -12,9 +12,9 @@
 #include <thread>
 #include <vector>
 
-#include "comm/environment.hpp"
-#include "comm/shm_files.hpp"
-#include "comm/udp_ports.hpp"
+#include "comm/posix/environment.hpp"
+#include "comm/posix/shm_files.hpp"
+#include "comm/posix/udp_ports.hpp"
 
 extern char** environ;
 

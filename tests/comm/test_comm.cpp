@@ -5,16 +5,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
-#include "comm/dds.hpp"
-#include "comm/fleet_guid.hpp"
-#include "comm/follower.hpp"
+#include "comm/dds/dds.hpp"
+#include "comm/dds/fleet_guid.hpp"
+#include "comm/lockstep/follower.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::comm {

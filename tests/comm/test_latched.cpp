@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "tests/bound_socket.hpp"
 

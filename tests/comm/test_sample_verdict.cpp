@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "recorder/sample_verdict.hpp"
 

@@ -1,15 +1,15 @@
 // Samples whose payload does not deserialize (comm::CheckedType refuses them): with Fast DDS
 // 2.9.1, DataReader::take_next_sample answers NO_DATA for such a sample, so a reader's Inbox
 // must count it from the refusal itself and go on taking what follows. A raw writer (the
-// recorder's and the replayer's type, comm/raw_type.hpp) sends bytes no reader can decode.
+// recorder's and the replayer's type, comm/dds/raw_type.hpp) sends bytes no reader can decode.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <thread>
 
-#include "comm/dds.hpp"
-#include "comm/raw_type.hpp"
+#include "comm/dds/dds.hpp"
+#include "comm/dds/raw_type.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::comm {

@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <cstring>
 
-#include "comm/checked_type.hpp"
-#include "comm/tick_check.hpp"
+#include "comm/dds/checked_type.hpp"
+#include "comm/lockstep/tick_check.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "plant/fault_gate.hpp"
 #include "plant/membership.hpp"

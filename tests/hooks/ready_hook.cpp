@@ -3,7 +3,7 @@
 #include <fstream>
 #include <string>
 
-#include "comm/process.hpp"
+#include "comm/dds/process.hpp"
 #include "tests/hooks/hooks.hpp"
 
 namespace {

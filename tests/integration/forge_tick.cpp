@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <thread>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 int main(int argc, char** argv) {

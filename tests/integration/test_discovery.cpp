@@ -8,7 +8,7 @@
 
 #include <filesystem>
 
-#include "comm/udp_ports.hpp"
+#include "comm/posix/udp_ports.hpp"
 #include "deploy/fleet/discovery.hpp"
 #include "tests/integration/fleet_runner.hpp"
 

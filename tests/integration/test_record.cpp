@@ -11,10 +11,10 @@
 #include <set>
 #include <tuple>
 
-#include "comm/checked_type.hpp"
-#include "comm/dds.hpp"
-#include "comm/lockstep.hpp"
-#include "comm/raw_type.hpp"
+#include "comm/dds/checked_type.hpp"
+#include "comm/dds/dds.hpp"
+#include "comm/dds/raw_type.hpp"
+#include "comm/lockstep/lockstep.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "recorder/recorder.hpp"
 #include "records/mcap.hpp"
@@ -112,7 +112,7 @@ TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
     sent[t.tick()] = t;
   }
   ASSERT_EQ(sent.size(), ticks + 1);
-  // Every answer the lock-step needs is there (comm/lockstep.hpp): each agent answers every tick
+  // Every answer the lock-step needs is there (comm/lockstep/lockstep.hpp): each agent answers every tick
   // it is assigned in, every 10th while idle, and its first; groups and central every tick.
   std::set<std::tuple<uint64_t, int, int>> replies;
   for (const auto* m : topics.at("maptr/agent_reply")) {

@@ -18,11 +18,11 @@
 #include <thread>
 #include <tuple>
 
-#include "comm/checked_type.hpp"
-#include "comm/dds.hpp"
-#include "comm/fleet_ids.hpp"
-#include "comm/raw_type.hpp"
-#include "comm/shm_files.hpp"
+#include "comm/dds/checked_type.hpp"
+#include "comm/dds/dds.hpp"
+#include "comm/dds/fleet_ids.hpp"
+#include "comm/dds/raw_type.hpp"
+#include "comm/posix/shm_files.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "recorder/recorder.hpp"
 #include "records/mcap.hpp"

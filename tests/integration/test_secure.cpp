@@ -14,7 +14,7 @@
 #include <sstream>
 #include <thread>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "deploy/fleet/secure_domain.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "tests/integration/fleet_runner.hpp"

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "agent/agent_input.hpp"
-#include "comm/lockstep.hpp"
-#include "comm/tick_check.hpp"
+#include "comm/lockstep/lockstep.hpp"
+#include "comm/lockstep/tick_check.hpp"
 #include "control/level1/agent_core.hpp"
 #include "idl/maptr.h"
 
@@ -104,7 +104,7 @@ TEST(Agent, SilentGroupHoldsTheLastAssignmentThenCoasts) {
   AgentCore a(c);
   a.step(still(1, 10.0, 0, 0));
   // The group's last status is from tick 0; central stays fresh. While the group is silent an
-  // agent takes every tick (comm/tick_check.hpp).
+  // agent takes every tick (comm/lockstep/tick_check.hpp).
   AgentOutput held, coast;
   for (long long k = 2; k <= 51; ++k) held = a.step(still(k, 10.0, 0, k - 1));  // silent for 0.5 s
   EXPECT_EQ(held.state, AgentState::kHolding);

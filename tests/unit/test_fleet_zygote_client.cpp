@@ -1,4 +1,4 @@
-// The agents' zygote (comm/zygote.hpp, deploy/fleet/zygote.hpp): a copy it forks is the
+// The agents' zygote (comm/posix/zygote.hpp, deploy/fleet/zygote.hpp): a copy it forks is the
 // launcher's own child, with what an exec'd child has (its own process group, the parent-death
 // signal, the request's environment, arguments and output), and a zygote that is gone leaves
 // the launcher starting children with exec.
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "comm/zygote.hpp"
+#include "comm/posix/zygote.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/zygote_client.hpp"
 

@@ -1,10 +1,10 @@
-// Who answers a tick (comm/lockstep.hpp): an idle agent answers every kIdleAnswerEvery ticks, in
+// Who answers a tick (comm/lockstep/lockstep.hpp): an idle agent answers every kIdleAnswerEvery ticks, in
 // a slot of its own, so that the idle agents of a side spread over the ticks.
 #include <gtest/gtest.h>
 
 #include <map>
 
-#include "comm/lockstep.hpp"
+#include "comm/lockstep/lockstep.hpp"
 
 namespace {
 

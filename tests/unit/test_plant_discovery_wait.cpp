@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "comm/fleet_ids.hpp"
+#include "comm/dds/fleet_ids.hpp"
 #include "plant/discovery_wait.hpp"
 
 using maptr::plant::discovery_wait_report;

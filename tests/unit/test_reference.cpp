@@ -12,7 +12,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "comm/environment.hpp"
+#include "comm/posix/environment.hpp"
 #include "config/scenario.hpp"
 #include "deploy/report/reference.hpp"
 #include "records/summary_fields.hpp"
@@ -41,12 +41,12 @@ TEST(Reference, TheCommittedSummaryReferenceIsTheKeyTable) {
 TEST(Reference, TheCommittedEnvironmentReferenceIsTheTable) {
   const std::string doc = std::string(MAPTR_SOURCE_DIR) + "/docs/ENVIRONMENT.md";
   EXPECT_EQ(read(doc), maptr::deploy::report::environment_reference(true))
-      << "docs/ENVIRONMENT.md differs from comm/environment.hpp: "
+      << "docs/ENVIRONMENT.md differs from comm/posix/environment.hpp: "
          "build/bin/maptr fields --environment --markdown > docs/ENVIRONMENT.md";
 }
 
 TEST(Reference, EveryEnvironmentVariableIsNamedOnlyInTheTable) {
-  // Outside comm/environment.hpp the product names a variable by the table's constant: a string
+  // Outside comm/posix/environment.hpp the product names a variable by the table's constant: a string
   // literal MAPTR_... (or one of the other variables the table holds) anywhere else is a second
   // declaration. MAPTR_TICK_WAKE is a DDS filter class, not a variable.
   std::set<std::string> table;
@@ -69,18 +69,18 @@ TEST(Reference, EveryEnvironmentVariableIsNamedOnlyInTheTable) {
     const std::string text = read(it->path().string());
     for (std::sregex_iterator m(text.begin(), text.end(), literal), end; m != end; ++m) {
       const std::string name = (*m)[1];
-      if (rel == "comm/environment.hpp") {
+      if (rel == "comm/posix/environment.hpp") {
         seen.insert(name);
         continue;
       }
-      if (name == "MAPTR_TICK_WAKE" && rel == "comm/tick_filter.hpp") continue;
-      ADD_FAILURE() << rel << " names \"" << name << "\" itself: use comm/environment.hpp's constant"
+      if (name == "MAPTR_TICK_WAKE" && rel == "comm/lockstep/tick_filter.hpp") continue;
+      ADD_FAILURE() << rel << " names \"" << name << "\" itself: use comm/posix/environment.hpp's constant"
                     << (table.count(name) ? "" : " (and add it to the table)");
     }
   }
   EXPECT_GT(files, 100);
   EXPECT_EQ(seen, table)
-      << "a constant of comm/environment.hpp is not in kEnvironment, or the other way round";
+      << "a constant of comm/posix/environment.hpp is not in kEnvironment, or the other way round";
 }
 
 TEST(Reference, TheCommittedSettingsReferenceIsTheLists) {

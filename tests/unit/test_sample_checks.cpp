@@ -1,12 +1,12 @@
 // What a reader checks before it trusts a sample, without DDS: decoding that never throws
-// (comm/checked_type.hpp) and the followers' tick check (comm/tick_check.hpp).
+// (comm/dds/checked_type.hpp) and the followers' tick check (comm/lockstep/tick_check.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "comm/checked_type.hpp"
-#include "comm/tick_check.hpp"
+#include "comm/dds/checked_type.hpp"
+#include "comm/lockstep/tick_check.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace {

@@ -1,18 +1,18 @@
-// Stale Fast DDS port files: which are removed and which are kept (comm/shm_files.hpp).
-#include "comm/shm_files.hpp"
-
-#include <gtest/gtest.h>
-
+// Stale Fast DDS port files: which are removed and which are kept (comm/posix/shm_files.hpp).
 #include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/file.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <string>
-#include <sys/file.h>
-#include <sys/mman.h>
-#include <sys/wait.h>
-#include <sys/stat.h>
-#include <unistd.h>
+
+#include "comm/posix/shm_files.hpp"
 
 namespace fs = std::filesystem;
 using maptr::comm::remove_unused_shm_ports;

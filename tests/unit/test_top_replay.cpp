@@ -16,7 +16,7 @@
 #include <string>
 #include <thread>
 
-#include "comm/shm_files.hpp"
+#include "comm/posix/shm_files.hpp"
 #include "deploy/top/replay_process.hpp"
 #include "deploy/top/view_text.hpp"
 

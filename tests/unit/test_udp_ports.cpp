@@ -5,7 +5,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include "comm/udp_ports.hpp"
+#include "comm/posix/udp_ports.hpp"
 #include "tests/bound_socket.hpp"
 
 using maptr::testing::BoundSocket;

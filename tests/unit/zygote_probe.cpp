@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "comm/zygote.hpp"
+#include "comm/posix/zygote.hpp"
 
 namespace {
 

@@ -5,14 +5,13 @@
 //
 //   maptr_secure_intruder --domain D [--lease S]
 #include <CLI/CLI.hpp>
-
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <iostream>
 #include <thread>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace comm = maptr::comm;

@@ -25,7 +25,7 @@ TickVerdict classify_tick(const msg::PlantTick& t, std::size_t per_side, long lo
 /// True when agent `index` of `side` must take tick t: the plant waits for its answer (its
 /// `wake` bit: assigned, its idle slot or rejoining), or its state may move on other than as an
 /// idle agent's (a group or central whose command is not fresh: the agent holds, coasts or
-/// stops; the run's end). The tick filter (comm/tick_filter.hpp) delivers an agent only these
+/// stops; the run's end). The tick filter (comm/lockstep/tick_filter.hpp) delivers an agent only these
 /// ticks. An agent that skipped ticks k0..k-1 was idle in each with a fresh group and central,
 /// so the values of tick k-1 carried in tick k (phidot_prev, phidot_ref_prev) are all it needs
 /// to go on (control/level1/agent_core.hpp).

@@ -1,14 +1,14 @@
-#include "comm/follower.hpp"
+#include "comm/lockstep/follower.hpp"
+
+#include <unistd.h>
 
 #include <cstdlib>
 #include <thread>
 
-#include <unistd.h>
-
-#include "comm/environment.hpp"
-#include "comm/fleet_guid.hpp"
-#include "comm/lockstep.hpp"
-#include "comm/tick_filter.hpp"
+#include "comm/dds/fleet_guid.hpp"
+#include "comm/lockstep/lockstep.hpp"
+#include "comm/lockstep/tick_filter.hpp"
+#include "comm/posix/environment.hpp"
 #include "config/scenario.hpp"
 
 namespace maptr::comm {
@@ -33,9 +33,10 @@ TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
   participant_ = std::make_unique<Participant>(args_.name, args_.dds);
   auto& p = *participant_;
   auto* tick = p.topic<msg::PlantTickPubSubType>(topic::kTick);
-  // An agent takes the ticks it needs only (comm/tick_filter.hpp), unless the run says otherwise.
+  // An agent takes the ticks it needs only (comm/lockstep/tick_filter.hpp), unless the run says otherwise.
   int side = 0, index = 0;
-  if (node_kind == msg::NODE_AGENT && args_.scenario.uses_tick_filter() && config::parse_agent_name(args_.name, side, index))
+  if (node_kind == msg::NODE_AGENT && args_.scenario.uses_tick_filter() &&
+      config::parse_agent_name(args_.name, side, index))
     p.reader(agent_tick_topic(p.raw(), tick, side, index), Profile::kStream, &ticks_);
   else
     p.reader(tick, Profile::kStream, &ticks_);
@@ -50,7 +51,8 @@ bool TickFollower::from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& 
   return *plant_writer_ == writer;
 }
 
-void TickFollower::on_sample(const msg::PlantTick& t, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
+void TickFollower::on_sample(const msg::PlantTick& t,
+                             const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
                              const std::function<void(const msg::PlantTick&)>& on_tick) {
   if (finished_.load()) return;
   if (!from_plant(writer)) {
@@ -80,7 +82,8 @@ void TickFollower::on_sample(const msg::PlantTick& t, const eprosima::fastrtps::
   }
   last_tick_ = static_cast<long long>(t.tick());
   if (t.run_state() != msg::RUN_RUNNING) {
-    log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted", t.tick());
+    log_->info("run {} at tick {}: exiting", t.run_state() == msg::RUN_FINISHED ? "finished" : "aborted",
+               t.tick());
     finished_.store(true);
     signal_.notify();
     return;
@@ -105,7 +108,7 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
     on_sample(t, w, on_tick);
   });
   // The plant's reader of the answers, and the recorder's when run.mcap records them
-  // (comm/lockstep.hpp).
+  // (comm/lockstep/lockstep.hpp).
   const int recorded = recorder_readers(args_.scenario.record, false);
   const int answer_readers = 1 + recorded;
   int code = 0;
@@ -125,8 +128,8 @@ int TickFollower::run(const std::function<void(const msg::PlantTick&)>& on_tick)
     }
   }
   ticks_.set_handler(nullptr);  // no answer leaves once run() has returned
-  log_->info("followed {} ticks ({} skipped while paused, {} rejected)", followed_.load(), skipped_paused_.load(),
-             rejected());
+  log_->info("followed {} ticks ({} skipped while paused, {} rejected)", followed_.load(),
+             skipped_paused_.load(), rejected());
   if (stop.load() && !finished_.load()) log_->info("stop signal: exiting");
   // The recorder takes every answer on one thread, which a loaded machine may keep waiting for a
   // core; an answer still queued for it when this participant ends is lost to run.mcap (seen as

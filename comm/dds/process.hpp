@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 #include "config/scenario.hpp"
 #include "idl/maptr.h"
 

@@ -1,4 +1,4 @@
-#include "comm/zygote.hpp"
+#include "comm/posix/zygote.hpp"
 
 #include <fcntl.h>
 #include <sys/prctl.h>

@@ -2,6 +2,10 @@
 // Small Fast DDS glue shared by every MAPTR process: participant set-up (discovery, transports,
 // leases), the two QoS profiles the protocol uses, typed writers, and readers whose listener
 // only hands samples to the owning loop (DDS callbacks never run the node's logic).
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
@@ -12,11 +16,6 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
-
-#include <atomic>
-#include <chrono>
-#include <condition_variable>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -26,33 +25,33 @@
 #include <utility>
 #include <vector>
 
-#include "comm/checked_type.hpp"
+#include "comm/dds/checked_type.hpp"
 
 namespace maptr::comm {
 
 /// How a participant finds the others.
 struct DdsOptions {
-  int domain = 0;                       ///< DDS domain id (tests use a private one)
+  int domain = 0;  ///< DDS domain id (tests use a private one)
   /// "HOST:PORT[,HOST:PORT...]": be a client of these servers (all, or own_server; server i has the
   /// GUID prefix of index i); empty: simple discovery
   std::string discovery_server;
-  int server_index = 0;                 ///< is_server: which entry of discovery_server this is
+  int server_index = 0;  ///< is_server: which entry of discovery_server this is
   /// A client: register only with this entry of discovery_server (its own host's server on a
   /// fleet of several hosts); -1: with every one.
   int own_server = -1;
-  double lease_s = 2.0;                 ///< participant and liveliness lease, s
-  bool is_server = false;               ///< this participant is the discovery server
-  uint32_t shm_segment_bytes = 0;       ///< 0: Fast DDS default
+  double lease_s = 2.0;            ///< participant and liveliness lease, s
+  bool is_server = false;          ///< this participant is the discovery server
+  uint32_t shm_segment_bytes = 0;  ///< 0: Fast DDS default
   /// MAPTR_DDS_LOG: Fast DDS's own log on the process's stderr from this level on ("error",
   /// "warning" or "info"; empty: Fast DDS's default, errors only).
   std::string dds_log;
-  int participant_id = -1;              ///< explicit id (sets its ports); -1: Fast DDS picks one
-  bool shm = true;                      ///< shared memory for data (else UDP only)
-  bool shm_data_only = true;            ///< with shm: user data on shared memory only, UDP for discovery
-  uint32_t shm_port_queue = 0;          ///< messages the shared-memory listening port holds; 0: default
+  int participant_id = -1;      ///< explicit id (sets its ports); -1: Fast DDS picks one
+  bool shm = true;              ///< shared memory for data (else UDP only)
+  bool shm_data_only = true;    ///< with shm: user data on shared memory only, UDP for discovery
+  uint32_t shm_port_queue = 0;  ///< messages the shared-memory listening port holds; 0: default
   std::string interface_address = "127.0.0.1";  ///< the one IPv4 interface UDP uses
-  uint32_t fleet_id = 0;                ///< the run's fleet id (comm/fleet_ids.hpp); 0: none
-  /// Folder of a secure domain (comm/security.hpp): the participant authenticates as the
+  uint32_t fleet_id = 0;                        ///< the run's fleet id (comm/dds/fleet_ids.hpp); 0: none
+  /// Folder of a secure domain (comm/dds/security.hpp): the participant authenticates as the
   /// identity of its name, encrypts and enforces its permissions; empty: a plain domain.
   std::string security_dir;
 };
@@ -69,11 +68,11 @@ inline constexpr const char* kControl = "maptr/control";
 inline constexpr const char* kGate = "maptr/gate";
 }  // namespace topic
 
-/// The QoS profiles of the protocol, defined in comm/maptr_qos.xml (installed as
+/// The QoS profiles of the protocol, defined in comm/dds/maptr_qos.xml (installed as
 /// bin/maptr_qos.xml; FASTRTPS_DEFAULT_PROFILES_FILE replaces it).
 enum class Profile {
-  kStream,   ///< lock-step data: best effort, keep-last, volatile (the lock-step repairs a loss)
-  kLatched,  ///< events and readiness: reliable, transient-local, keep-all
+  kStream,          ///< lock-step data: best effort, keep-last, volatile (the lock-step repairs a loss)
+  kLatched,         ///< events and readiness: reliable, transient-local, keep-all
   kReliableStream,  ///< lock-step data where nothing repairs a loss (a replay): reliable, keep-last
 };
 
@@ -269,7 +268,7 @@ class Direct : public Inbox<T> {
 };
 
 /// Writer listener that counts matched readers. After only_fleet(id) (before the writer is
-/// created) it counts only the readers of that fleet (their GUID prefix, comm/fleet_guid.hpp), so
+/// created) it counts only the readers of that fleet (their GUID prefix, comm/dds/fleet_guid.hpp), so
 /// that a watcher on the domain, such as `maptr top`, is never taken for a member.
 class MatchCounter : public eprosima::fastdds::dds::DataWriterListener {
  public:
@@ -290,7 +289,7 @@ class MatchCounter : public eprosima::fastdds::dds::DataWriterListener {
 
 /// A participant with one publisher and one subscriber; owns every entity it creates
 /// (delete_contained_entities() on destruction). With a fleet id and an explicit participant id,
-/// its GUID prefix is the fleet's (comm/fleet_ids.hpp). With a security folder, `name` is also
+/// its GUID prefix is the fleet's (comm/dds/fleet_ids.hpp). With a security folder, `name` is also
 /// its identity (NAME.cert.pem, NAME.permissions.p7s there). The listeners given to reader()
 /// and writer() must outlive it (declare them before it): deleting its entities still calls them.
 class Participant {
@@ -308,7 +307,7 @@ class Participant {
     return make_topic(name, ts);
   }
 
-  /// The topic `name` of a type given at run time (comm/raw_type.hpp); takes `type`.
+  /// The topic `name` of a type given at run time (comm/dds/raw_type.hpp); takes `type`.
   eprosima::fastdds::dds::Topic* topic(const std::string& name, eprosima::fastdds::dds::TopicDataType* type) {
     eprosima::fastdds::dds::TypeSupport ts(type);
     return make_topic(name, ts);
@@ -322,9 +321,10 @@ class Participant {
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* t, Profile p,
                                              eprosima::fastdds::dds::DataWriterListener* l = nullptr);
   /// A writer that evaluates the content filters of up to `reader_filters` readers before it
-  /// sends (writer-side filtering, comm/tick_filter.hpp); 0: none, each reader filters itself.
+  /// sends (writer-side filtering, comm/lockstep/tick_filter.hpp); 0: none, each reader filters itself.
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* t, Profile p,
-                                             eprosima::fastdds::dds::DataWriterListener* l, int32_t reader_filters);
+                                             eprosima::fastdds::dds::DataWriterListener* l,
+                                             int32_t reader_filters);
   /// A reader of a topic or of a filtered view of one (a ContentFilteredTopic).
   eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::TopicDescription* t, Profile p,
                                              eprosima::fastdds::dds::DataReaderListener* l);
@@ -370,10 +370,11 @@ eprosima::fastrtps::rtps::Locator_t shm_unicast_locator();
 /// The entries of a comma-separated list of discovery servers.
 std::vector<std::string> split_servers(const std::string& list);
 
-/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER (one or a comma-separated list), MAPTR_LEASE_S, MAPTR_INTERFACE, MAPTR_TRANSPORT ("shm": data on
-/// shared memory only; "shm+udp": data on both; "udp": loopback UDP only), MAPTR_SHM_PORT_QUEUE,
-/// MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES, MAPTR_FLEET_ID and MAPTR_SECURITY_DIR into the options (the
-/// launcher sets them for its children); explicit command-line values override them.
+/// Reads MAPTR_DOMAIN, MAPTR_DISCOVERY_SERVER (one or a comma-separated list), MAPTR_LEASE_S,
+/// MAPTR_INTERFACE, MAPTR_TRANSPORT ("shm": data on shared memory only; "shm+udp": data on both; "udp":
+/// loopback UDP only), MAPTR_SHM_PORT_QUEUE, MAPTR_PARTICIPANT_ID, MAPTR_SHM_SEGMENT_BYTES, MAPTR_FLEET_ID
+/// and MAPTR_SECURITY_DIR into the options (the launcher sets them for its children); explicit command-line
+/// values override them.
 DdsOptions options_from_env();
 
 /// Removes Fast DDS shared-memory files in /dev/shm that no live process holds any more:

@@ -1,4 +1,4 @@
-#include "comm/udp_ports.hpp"
+#include "comm/posix/udp_ports.hpp"
 
 #include <filesystem>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "comm/fleet_ids.hpp"
+#include "comm/dds/fleet_ids.hpp"
 
 #include "config/scenario.hpp"
 
@@ -16,7 +16,8 @@ int base_participant_id(const std::string& name, int agents) {
     if (name == kControllers[i]) return kPlantParticipantId + i;
   int side = 0, index = 0;
   const int per_side = agents / 2;
-  if (config::parse_agent_name(name, side, index) && index < per_side) return agent_participant_id(side, index, agents);
+  if (config::parse_agent_name(name, side, index) && index < per_side)
+    return agent_participant_id(side, index, agents);
   return -1;
 }
 

@@ -50,7 +50,7 @@ void learn_secure_identities(const SecureFiles& f);
 /// if it is one of the learnt identities.
 std::optional<std::string> secure_identity(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix);
 
-/// The first participant id (comm/fleet_ids.hpp) of the process whose certificate the prefix
+/// The first participant id (comm/dds/fleet_ids.hpp) of the process whose certificate the prefix
 /// was derived from, in a fleet of `agents` agents; no strings: cheap enough for every sample.
 std::optional<int> secure_base_id(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix, int agents);
 

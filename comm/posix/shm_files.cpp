@@ -1,4 +1,9 @@
-#include "comm/shm_files.hpp"
+#include "comm/posix/shm_files.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <ctime>
@@ -6,10 +11,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <fcntl.h>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <vector>
 
 namespace maptr::comm {
@@ -37,7 +38,8 @@ int mapped_paths(std::set<std::string>& out) {
       if (slash == std::string::npos) continue;
       std::string path = line.substr(slash);
       const std::string deleted = " (deleted)";
-      if (path.size() > deleted.size() && path.compare(path.size() - deleted.size(), deleted.size(), deleted) == 0)
+      if (path.size() > deleted.size() &&
+          path.compare(path.size() - deleted.size(), deleted.size(), deleted) == 0)
         path.resize(path.size() - deleted.size());
       out.insert(path);
     }
@@ -102,8 +104,8 @@ ShmSweep remove_unused_shm_ports(const std::string& dir, double min_age_s, const
     bool in_use = false, young = false, foreign = false;
     for (const auto& f : files) {
       if (mapped.count(f.string()) || mapped.count(canon_dir + "/" + f.filename().string())) in_use = true;
-      if (f.filename().string().size() > 3 && f.filename().string().compare(f.filename().string().size() - 3, 3, "_el") == 0 &&
-          flocked(f))
+      if (f.filename().string().size() > 3 &&
+          f.filename().string().compare(f.filename().string().size() - 3, 3, "_el") == 0 && flocked(f))
         in_use = true;
       struct stat st {};
       if (::lstat(f.c_str(), &st) != 0) continue;

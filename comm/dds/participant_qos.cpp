@@ -1,5 +1,5 @@
-// The QoS of a participant from DdsOptions (comm/participant_qos.hpp).
-#include "comm/participant_qos.hpp"
+// The QoS of a participant from DdsOptions (comm/dds/participant_qos.hpp).
+#include "comm/dds/participant_qos.hpp"
 
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
@@ -14,8 +14,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "comm/environment.hpp"
-#include "comm/fleet_guid.hpp"
+#include "comm/dds/fleet_guid.hpp"
+#include "comm/posix/environment.hpp"
 
 namespace maptr::comm {
 
@@ -26,7 +26,8 @@ namespace {
 
 rtps::Locator_t parse_locator(const std::string& addr) {
   const auto colon = addr.rfind(':');
-  if (colon == std::string::npos) throw std::invalid_argument("discovery server '" + addr + "': expected HOST:PORT");
+  if (colon == std::string::npos)
+    throw std::invalid_argument("discovery server '" + addr + "': expected HOST:PORT");
   rtps::Locator_t loc;
   loc.kind = LOCATOR_KIND_UDPv4;
   rtps::IPLocator::setIPv4(loc, addr.substr(0, colon));
@@ -58,7 +59,8 @@ rtps::Locator_t shm_unicast_locator() {
   uint16_t id = 0;
   if (ips.size() > 0) {
     ::MD5 md5;
-    for (const auto& l : ips) md5.update(reinterpret_cast<const unsigned char*>(l.address), sizeof(l.address));
+    for (const auto& l : ips)
+      md5.update(reinterpret_cast<const unsigned char*>(l.address), sizeof(l.address));
     md5.finalize();
     for (std::size_t i = 0; i < sizeof(md5.digest); i += 2)
       id ^= static_cast<uint16_t>((static_cast<uint16_t>(md5.digest[i]) << 8) | md5.digest[i + 1]);
@@ -110,10 +112,10 @@ void set_discovery(dds::DomainParticipantQos& q, const DdsOptions& o) {
   auto& disc = q.wire_protocol().builtin.discovery_config;
   const long lease_ms = static_cast<long>(o.lease_s * 1000.0);
   disc.leaseDuration = eprosima::fastrtps::Duration_t(static_cast<int32_t>(lease_ms / 1000),
-                                        static_cast<uint32_t>((lease_ms % 1000) * 1000000));
+                                                      static_cast<uint32_t>((lease_ms % 1000) * 1000000));
   const long ann_ms = std::max(100L, lease_ms / 4);
-  disc.leaseDuration_announcementperiod =
-      eprosima::fastrtps::Duration_t(static_cast<int32_t>(ann_ms / 1000), static_cast<uint32_t>((ann_ms % 1000) * 1000000));
+  disc.leaseDuration_announcementperiod = eprosima::fastrtps::Duration_t(
+      static_cast<int32_t>(ann_ms / 1000), static_cast<uint32_t>((ann_ms % 1000) * 1000000));
 
   // Several servers (one per host of a fleet on several hosts): each server connects to the
   // others, and a client registers with its own host's server only (own_server). A server

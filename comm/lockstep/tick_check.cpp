@@ -1,4 +1,4 @@
-#include "comm/tick_check.hpp"
+#include "comm/lockstep/tick_check.hpp"
 
 #include <cmath>
 #include <limits>

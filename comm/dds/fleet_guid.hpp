@@ -8,7 +8,7 @@
 // this keeps other fleets and careless tools out, not attackers (README, "What a local user
 // can do"). On a secure domain (`maptr run --secure`) DDS Security replaces the prefix by one
 // derived from the participant's certificate; written_by_id() then names the writer by its
-// certificate (comm/security.hpp).
+// certificate (comm/dds/security.hpp).
 #include <fastdds/rtps/common/InstanceHandle.h>
 
 #include <cstdint>
@@ -16,7 +16,7 @@
 #include <optional>
 #include <string>
 
-#include "comm/fleet_ids.hpp"
+#include "comm/dds/fleet_ids.hpp"
 
 namespace maptr::comm {
 
@@ -28,7 +28,7 @@ std::optional<int> fleet_participant(uint32_t fleet_id,
                                      const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
 
 /// True when `writer` belongs to the process whose first start had participant id `base_id`
-/// (comm/fleet_ids.hpp), in any of its starts. No strings: cheap enough for every sample.
+/// (comm/dds/fleet_ids.hpp), in any of its starts. No strings: cheap enough for every sample.
 bool written_by_id(uint32_t fleet_id, int agents, const eprosima::fastrtps::rtps::InstanceHandle_t& writer,
                    int base_id);
 

@@ -1,4 +1,4 @@
-#include "comm/raw_type.hpp"
+#include "comm/dds/raw_type.hpp"
 
 #include <cstring>
 

@@ -21,7 +21,7 @@ inline int recorder_readers(const std::string& record, bool plant_topic) {
 }
 
 /// How long a follower's participant stays after the run's end while run.mcap records its
-/// answers, so that the recorder takes the last of them (comm/follower.cpp).
+/// answers, so that the recorder takes the last of them (comm/lockstep/follower.cpp).
 inline constexpr std::chrono::milliseconds kRecorderDrain{500};
 
 /// Ticks between two answers of an idle agent.

@@ -5,16 +5,15 @@
 // filtering: an idle agent is not woken at all for the nine ticks in ten it does not answer),
 // and on each agent's participant, whose reader evaluates it for samples the writer did not
 // filter. A tick that does not decode is delivered: the follower's checks then reject it.
-#include <fastdds/dds/domain/DomainParticipant.hpp>
-#include <fastdds/dds/topic/ContentFilteredTopic.hpp>
-#include <fastdds/dds/topic/Topic.hpp>
-
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/topic/ContentFilteredTopic.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
 #include <mutex>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 
 namespace maptr::comm {
 

@@ -1,5 +1,6 @@
-#include "comm/process.hpp"
+#include "comm/dds/process.hpp"
 
+#include <sched.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
 
@@ -8,7 +9,6 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
-#include <sched.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>

@@ -1,27 +1,27 @@
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 
-#include "comm/environment.hpp"
-#include "comm/fleet_guid.hpp"
-#include "comm/participant_qos.hpp"
-#include "comm/security.hpp"
-#include "comm/shm_files.hpp"
-#include "comm/udp_ports.hpp"
-
-#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastrtps/utils/IPLocator.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cstdlib>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <filesystem>
 #include <future>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
+
+#include "comm/dds/fleet_guid.hpp"
+#include "comm/dds/participant_qos.hpp"
+#include "comm/dds/security.hpp"
+#include "comm/posix/environment.hpp"
+#include "comm/posix/shm_files.hpp"
+#include "comm/posix/udp_ports.hpp"
 
 namespace maptr::comm {
 
@@ -65,7 +65,9 @@ Participant::Participant(const std::string& name, const DdsOptions& o) : o_(o) {
     learn_secure_identities(files);
   }
   dp_ = dds::DomainParticipantFactory::get_instance()->create_participant(o.domain, q);
-  if (!dp_) throw std::runtime_error("cannot create DDS participant '" + name + "' on domain " + std::to_string(o.domain));
+  if (!dp_)
+    throw std::runtime_error("cannot create DDS participant '" + name + "' on domain " +
+                             std::to_string(o.domain));
   // Latched writers' acknowledgement locator (writer()); a participant with UDP data locators
   // needs none. Fast DDS moves a participant's ports when they are taken: only a port this
   // process holds is announced.
@@ -147,12 +149,14 @@ void load_qos_profiles() {
 
 const char* profile_name(Profile p, bool writer) {
   if (p == Profile::kStream) return writer ? "maptr_stream_writer" : "maptr_stream_reader";
-  if (p == Profile::kReliableStream) return writer ? "maptr_reliable_stream_writer" : "maptr_reliable_stream_reader";
+  if (p == Profile::kReliableStream)
+    return writer ? "maptr_reliable_stream_writer" : "maptr_reliable_stream_reader";
   return writer ? "maptr_latched_writer" : "maptr_latched_reader";
 }
 
 std::runtime_error missing_profile(const char* name) {
-  return std::runtime_error(std::string("DDS QoS profile '") + name + "' not found in " + qos_profiles_file());
+  return std::runtime_error(std::string("DDS QoS profile '") + name + "' not found in " +
+                            qos_profiles_file());
 }
 
 }  // namespace
@@ -166,7 +170,8 @@ dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterLi
   return writer(t, p, l, 0);
 }
 
-dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l, int32_t reader_filters) {
+dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l,
+                                     int32_t reader_filters) {
   load_qos_profiles();
   dds::DataWriterQos q;
   if (pub_->get_datawriter_qos_from_profile(profile_name(p, true), q) != ReturnCode_t::RETCODE_OK)
@@ -176,7 +181,8 @@ dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterLi
     q.writer_resource_limits().reader_filters_allocation.maximum = static_cast<size_t>(reader_filters);
   }
   if (p == Profile::kLatched) add_latched_ack_locator(q);
-  auto* w = pub_->create_datawriter(t, q, l, l ? dds::StatusMask::publication_matched() : dds::StatusMask::none());
+  auto* w =
+      pub_->create_datawriter(t, q, l, l ? dds::StatusMask::publication_matched() : dds::StatusMask::none());
   if (!w) throw std::runtime_error("cannot create writer on " + t->get_name());
   return w;
 }
@@ -200,7 +206,8 @@ dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::D
   return reader(t, p, l, 0);
 }
 
-dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::DataReaderListener* l, int32_t depth) {
+dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::DataReaderListener* l,
+                                     int32_t depth) {
   load_qos_profiles();
   dds::DataReaderQos q;
   if (sub_->get_datareader_qos_from_profile(profile_name(p, false), q) != ReturnCode_t::RETCODE_OK)
@@ -211,8 +218,8 @@ dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::D
     q.resource_limits().max_samples = std::max(q.resource_limits().max_samples, depth);
     q.resource_limits().max_samples_per_instance = depth;
   }
-  dds::StatusMask mask = dds::StatusMask::data_available() << dds::StatusMask::subscription_matched()
-                         << dds::StatusMask::liveliness_changed();
+  dds::StatusMask mask = dds::StatusMask::data_available()
+                         << dds::StatusMask::subscription_matched() << dds::StatusMask::liveliness_changed();
   auto* r = sub_->create_datareader(t, q, l, mask);
   if (!r) throw std::runtime_error("cannot create reader on " + t->get_name());
   return r;
@@ -231,8 +238,10 @@ DdsOptions options_from_env() {
   }
   if (const char* q = std::getenv(kEnvShmPortQueue)) o.shm_port_queue = static_cast<uint32_t>(std::atol(q));
   if (const char* id = std::getenv(kEnvParticipantId)) o.participant_id = std::atoi(id);
-  if (const char* m = std::getenv(kEnvShmSegmentBytes)) o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
-  if (const char* f = std::getenv(kEnvFleetId)) o.fleet_id = static_cast<uint32_t>(std::strtoul(f, nullptr, 10));
+  if (const char* m = std::getenv(kEnvShmSegmentBytes))
+    o.shm_segment_bytes = static_cast<uint32_t>(std::atol(m));
+  if (const char* f = std::getenv(kEnvFleetId))
+    o.fleet_id = static_cast<uint32_t>(std::strtoul(f, nullptr, 10));
   if (const char* s = std::getenv(kEnvSecurityDir)) o.security_dir = s;
   if (const char* l = std::getenv(kEnvDdsLog)) o.dds_log = l;
   return o;
@@ -270,7 +279,7 @@ int run_fastdds_shm_clean() {
 
 int clean_stale_shm(const std::set<int>& own_ports) {
   run_fastdds_shm_clean();
-  // Then the port files `fastdds shm clean` leaves (see comm/shm_files.hpp).
+  // Then the port files `fastdds shm clean` leaves (see comm/posix/shm_files.hpp).
   return remove_unused_shm_ports("/dev/shm", 10.0, own_ports).ports_removed;
 }
 

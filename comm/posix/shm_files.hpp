@@ -13,9 +13,9 @@
 namespace maptr::comm {
 
 struct ShmSweep {
-  int ports_removed = 0;    ///< port groups removed (each up to three files)
-  int ports_in_use = 0;     ///< port groups kept: a process maps one of their files or locks its `_el`
-  int ports_too_young = 0;  ///< port groups kept: a file was modified less than min_age_s ago
+  int ports_removed = 0;         ///< port groups removed (each up to three files)
+  int ports_in_use = 0;          ///< port groups kept: a process maps one of their files or locks its `_el`
+  int ports_too_young = 0;       ///< port groups kept: a file was modified less than min_age_s ago
   int unreadable_processes = 0;  ///< processes whose /proc/PID/maps this user may not read
 };
 
@@ -34,7 +34,9 @@ ShmSweep remove_unused_shm_ports(const std::string& dir = "/dev/shm", double min
 /// DDS also uses to name its shared-memory ports. The first port of `domain`:
 inline int rtps_domain_port_base(int domain) { return 7400 + 250 * domain; }
 /// Participant `id`'s unicast ports on `domain`: metatraffic (d1) and user data (d3).
-inline int rtps_metatraffic_unicast_port(int domain, int id) { return rtps_domain_port_base(domain) + 10 + 2 * id; }
+inline int rtps_metatraffic_unicast_port(int domain, int id) {
+  return rtps_domain_port_base(domain) + 10 + 2 * id;
+}
 inline int rtps_user_unicast_port(int domain, int id) { return rtps_domain_port_base(domain) + 11 + 2 * id; }
 
 /// The highest participant id whose ports on `domain` stay below 65536 (ids above about 120

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 
 namespace maptr::comm {
 

@@ -3,10 +3,9 @@
 // discovery server's client, or a server), transports (shared memory, UDP on one interface),
 // participant id and GUID prefix. Security properties are added by the Participant.
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
-
 #include <string>
 
-#include "comm/dds.hpp"
+#include "comm/dds/dds.hpp"
 
 namespace maptr::comm {
 

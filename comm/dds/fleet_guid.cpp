@@ -1,8 +1,8 @@
-#include "comm/fleet_guid.hpp"
+#include "comm/dds/fleet_guid.hpp"
 
 #include <unistd.h>
 
-#include "comm/security.hpp"
+#include "comm/dds/security.hpp"
 
 namespace maptr::comm {
 
@@ -48,7 +48,7 @@ std::optional<int> fleet_participant(uint32_t fleet_id, const rtps::InstanceHand
 
 bool written_by_id(uint32_t fleet_id, int agents, const rtps::InstanceHandle_t& writer, int base_id) {
   const rtps::GUID_t guid = rtps::iHandle2GUID(writer);
-  // On a secure domain the prefix names the writer's certificate (comm/security.hpp).
+  // On a secure domain the prefix names the writer's certificate (comm/dds/security.hpp).
   if (is_secure_prefix(guid.guidPrefix)) {
     const auto secure = secure_base_id(guid.guidPrefix, agents);
     return secure && base_id >= 0 && *secure == base_id;

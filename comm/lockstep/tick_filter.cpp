@@ -1,17 +1,17 @@
-#include "comm/tick_filter.hpp"
+#include "comm/lockstep/tick_filter.hpp"
 
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
-#include <fastdds/dds/topic/IContentFilter.hpp>
-#include <fastdds/dds/topic/IContentFilterFactory.hpp>
 
 #include <atomic>
 #include <cstdlib>
+#include <fastdds/dds/topic/IContentFilter.hpp>
+#include <fastdds/dds/topic/IContentFilterFactory.hpp>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 
-#include "comm/tick_check.hpp"
+#include "comm/lockstep/tick_check.hpp"
 #include "idl/maptr.h"
 
 namespace maptr::comm {
@@ -52,7 +52,8 @@ class DecodedTick {
     if (payload.data == nullptr || payload.length == 0) return false;
     try {
       eprosima::fastcdr::FastBuffer buf(reinterpret_cast<char*>(payload.data), payload.length);
-      eprosima::fastcdr::Cdr cdr(buf, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN, eprosima::fastcdr::Cdr::DDS_CDR);
+      eprosima::fastcdr::Cdr cdr(buf, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN,
+                                 eprosima::fastcdr::Cdr::DDS_CDR);
       cdr.read_encapsulation();
       tick_.deserialize(cdr);
       return true;
@@ -66,7 +67,8 @@ class TickFilter final : public dds::IContentFilter {
  public:
   TickFilter(DecodedTick& cache, int side, int index) : cache_(cache), side_(side), index_(index) {}
 
-  bool evaluate(const SerializedPayload& payload, const FilterSampleInfo& info, const GUID_t&) const override {
+  bool evaluate(const SerializedPayload& payload, const FilterSampleInfo& info,
+                const GUID_t&) const override {
     bool wakes = true;
     // A tick that does not decode goes through: the follower's checks reject it and count it.
     cache_.with(payload, info, [&](const msg::PlantTick& t) { wakes = tick_wakes_agent(t, side_, index_); });
@@ -153,12 +155,13 @@ void register_tick_filter(dds::DomainParticipant* dp, TickFilterGate* gate) {
     throw std::runtime_error("cannot register the tick filter");
 }
 
-dds::ContentFilteredTopic* agent_tick_topic(dds::DomainParticipant* dp, dds::Topic* tick, int side, int index) {
+dds::ContentFilteredTopic* agent_tick_topic(dds::DomainParticipant* dp, dds::Topic* tick, int side,
+                                            int index) {
   register_tick_filter(dp);
-  const std::string name = std::string(tick->get_name()) + "/agent/" + std::to_string(side) + "/" +
-                           std::to_string(index);
-  auto* cft = dp->create_contentfilteredtopic(name, tick, "wake(%0, %1)",
-                                              {std::to_string(side), std::to_string(index)}, kTickFilterClass);
+  const std::string name =
+      std::string(tick->get_name()) + "/agent/" + std::to_string(side) + "/" + std::to_string(index);
+  auto* cft = dp->create_contentfilteredtopic(
+      name, tick, "wake(%0, %1)", {std::to_string(side), std::to_string(index)}, kTickFilterClass);
   if (cft == nullptr) throw std::runtime_error("cannot create the filtered tick topic " + name);
   return cft;
 }

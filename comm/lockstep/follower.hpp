@@ -17,8 +17,8 @@
 #include <memory>
 #include <optional>
 
-#include "comm/process.hpp"
-#include "comm/tick_check.hpp"
+#include "comm/dds/process.hpp"
+#include "comm/lockstep/tick_check.hpp"
 #include "idl/maptrPubSubTypes.h"
 
 namespace maptr::comm {
@@ -37,7 +37,8 @@ class TickFollower {
   /// Creates the writer this process answers each tick on (readiness waits for its match).
   template <class PubSubType>
   eprosima::fastdds::dds::DataWriter* answer_writer(const char* topic_name) {
-    answer_ = participant_->writer(participant_->topic<PubSubType>(topic_name), Profile::kStream, &answer_match_);
+    answer_ =
+        participant_->writer(participant_->topic<PubSubType>(topic_name), Profile::kStream, &answer_match_);
     return answer_;
   }
 
@@ -82,12 +83,12 @@ class TickFollower {
   std::function<void()> resend_;
   std::atomic<uint64_t> skipped_paused_{0};
   std::atomic<uint64_t> followed_{0};  ///< ticks handed to the node (an agent's: the tick filter's)
-  int slot_ = -1;  ///< this process's entry in PlantTick::paused (paused_slot)
+  int slot_ = -1;                      ///< this process's entry in PlantTick::paused (paused_slot)
   std::optional<eprosima::fastrtps::rtps::InstanceHandle_t> plant_writer_;
   // Written on the DDS receive thread by on_sample, read by the loop.
   long long last_tick_ = -1;
-  std::atomic<bool> heard_{false};    ///< a tick came since the loop last looked
-  std::atomic<bool> finished_{false}; ///< the run ended (a tick not RUN_RUNNING)
+  std::atomic<bool> heard_{false};     ///< a tick came since the loop last looked
+  std::atomic<bool> finished_{false};  ///< the run ended (a tick not RUN_RUNNING)
 
   bool from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
   /// One tick sample, on the DDS receive thread.

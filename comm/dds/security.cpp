@@ -1,4 +1,4 @@
-#include "comm/security.hpp"
+#include "comm/dds/security.hpp"
 
 #include <openssl/evp.h>
 #include <openssl/pem.h>
@@ -11,7 +11,7 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "comm/fleet_ids.hpp"
+#include "comm/dds/fleet_ids.hpp"
 
 namespace maptr::comm {
 
