@@ -3,7 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "deploy/fuzz/fuzz.hpp"
+#include "deploy/studies/fuzz/fuzz.hpp"
 
 namespace maptr::deploy::cli {
 

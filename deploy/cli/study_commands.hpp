@@ -4,9 +4,9 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "deploy/bench/bench.hpp"
-#include "deploy/experiments/compare.hpp"
-#include "deploy/experiments/experiments.hpp"
+#include "deploy/studies/bench/bench.hpp"
+#include "deploy/studies/experiments/compare.hpp"
+#include "deploy/studies/experiments/experiments.hpp"
 
 namespace maptr::deploy::cli {
 

@@ -1,7 +1,7 @@
 // The IPC floor probe of `maptr bench`: real processes and pipes, no timing asserted.
 #include <gtest/gtest.h>
 
-#include "deploy/bench/floor.hpp"
+#include "deploy/studies/bench/floor.hpp"
 
 namespace maptr::deploy {
 namespace {

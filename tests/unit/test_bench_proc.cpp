@@ -1,13 +1,13 @@
-// The bench's /proc counters (deploy/bench/proc_stats.hpp) against captured /proc files, and
-// the cost per tick by process kind (deploy/bench/fleet_cost.hpp).
+// The bench's /proc counters (deploy/studies/bench/proc_stats.hpp) against captured /proc files, and
+// the cost per tick by process kind (deploy/studies/bench/fleet_cost.hpp).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <fstream>
 #include <sstream>
 
-#include "deploy/bench/fleet_cost.hpp"
-#include "deploy/bench/proc_stats.hpp"
+#include "deploy/studies/bench/fleet_cost.hpp"
+#include "deploy/studies/bench/proc_stats.hpp"
 
 namespace maptr::deploy {
 namespace {

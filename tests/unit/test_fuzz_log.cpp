@@ -1,7 +1,7 @@
-// libFuzzer's final statistics as `maptr fuzz` reads them (deploy/fuzz/fuzz_log.hpp).
+// libFuzzer's final statistics as `maptr fuzz` reads them (deploy/studies/fuzz/fuzz_log.hpp).
 #include <gtest/gtest.h>
 
-#include "deploy/fuzz/fuzz_log.hpp"
+#include "deploy/studies/fuzz/fuzz_log.hpp"
 
 namespace {
 

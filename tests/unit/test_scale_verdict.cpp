@@ -1,7 +1,7 @@
 // bench scale's answer per size (status and thresholds) and the JUnit XML it writes.
 #include <gtest/gtest.h>
 
-#include "deploy/bench/scale_verdict.hpp"
+#include "deploy/studies/bench/scale_verdict.hpp"
 #include "records/junit.hpp"
 
 namespace {

@@ -1,0 +1,275 @@
+// `maptr bench scale`: discovery time, real-time factor, CPU and memory against the number of
+// agents, one fleet per size (each in a child process: a fleet that fails at a size is recorded,
+// not fatal to the bench).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "deploy/fleet/isolated_launch.hpp"
+#include "deploy/report/gnuplot.hpp"
+#include "deploy/report/table.hpp"
+#include "deploy/studies/bench/bench_parts.hpp"
+#include "deploy/studies/bench/cost_watch.hpp"
+#include "deploy/studies/bench/floor.hpp"
+#include "deploy/studies/bench/memory.hpp"
+#include "deploy/studies/bench/proc_stats.hpp"
+#include "deploy/studies/bench/scale_verdict.hpp"
+#include "records/junit.hpp"
+#include "records/summary.hpp"
+
+namespace maptr::deploy {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+constexpr double kScaleSpeed = 10.0;  ///< m/s
+constexpr int kScaleTraceEvery = 10;  ///< trace rows
+constexpr std::size_t kStatusMdChars = 70;
+constexpr double kKiB = 1024.0;
+/// Processes besides the agents that answer every tick: 2 groups and central.
+constexpr int kAnswersBesideAgents = 3;
+
+/// The columns of scale.csv (kB, µs) and of scale.md (MB, ms).
+std::vector<report::Column> columns() {
+  std::vector<report::Column> cols = {{"agents", "N", 0},
+                                      {"mode", "mode", -1},
+                                      {"hosts", "hosts", 0},
+                                      {"status", "status", -1, false, true},
+                                      {"status_text", "status", -1, true, false},
+                                      {"discovery_s", "discovery s", 2},
+                                      {"ticks_per_wall_s", "ticks / wall s", 1},
+                                      {"real_time_factor", "RTF (100 Hz)", 2},
+                                      {"cpu_s_per_sim_s", "CPU s / sim s", 2},
+                                      {"pss_agent_median_kB", "", 0, false, true},
+                                      {"pss_agent_median_MB", "PSS agent median MB", 1, true, false},
+                                      {"pss_agent_max_kB", "", 0, false, true},
+                                      {"pss_agent_max_MB", "PSS agent max MB", 1, true, false},
+                                      {"pss_total_kB", "", 0, false, true},
+                                      {"pss_total_MB", "PSS total MB", 0, true, false},
+                                      {"samples_per_tick", "DDS samples / tick", 0},
+                                      {"bridge_bytes_per_tick", "bridge bytes / tick", 0},
+                                      {"tick_median_us", "", 0, false, true},
+                                      {"tick_median_ms", "tick median ms", 2, true, false},
+                                      {"tick_p99_us", "", 0, false, true},
+                                      {"tick_p99_ms", "tick p99 ms", 2, true, false},
+                                      {"floor_median_us", "floor median µs", 0},
+                                      {"x_floor", "tick / floor", 1},
+                                      {"floor_cs_per_round", "floor cs / round", 1},
+                                      {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
+  for (const auto& c : fleet_cost_columns()) cols.push_back({c.key, c.head, c.prec});
+  // last: earlier columns keep their places
+  cols.push_back({"record", "run.mcap records", -1});
+  cols.push_back({"realtime", "paced to the wall clock", -1});
+  cols.push_back({"tick_filter", "tick filter", -1});
+  cols.push_back({"plant_scheduling", "plant lock-step thread", -1});
+  cols.push_back({"steal_pct_fleet", "CPU steal % fleet", 1});
+  cols.push_back({"steal_pct_floor", "CPU steal % floor", 1});
+  return cols;
+}
+
+/// PSS per agent process the bench draws as its target, MB.
+constexpr double kPssTargetMB = 8.0;
+
+/// `plot` of column `y` (an expression of column values) against N, one curve per control mode
+/// (rows of one host only), without the closing newline.
+std::string plot_by_mode(const std::string& y) {
+  std::string cmd = "plot ";
+  const char* modes[] = {"ec", "all"};
+  for (const char* m : modes)
+    cmd += std::string(cmd.size() > 5 ? ", " : "") + "'scale.csv' using \"agents\":(strcol(\"mode\") eq \"" +
+           m + "\" && column(\"hosts\") == 1 ? " + y + " : NaN) with linespoints title 'mode " + m + "'";
+  return cmd;
+}
+
+/// The plots of scale.png, by column name.
+std::string plot_body() {
+  return "set multiplot layout 2,3 title 'MAPTR scale-up on this machine (lock-step, one host)'\n"
+         "set logscale x 2\nset grid\nset xlabel 'agent processes N'\nset key top left\n"
+         "set ylabel 'seconds'\nset title 'launch to all matched'\n" +
+         plot_by_mode("column(\"discovery_s\")") +
+         "\nset ylabel 'simulated s per wall s'\nset title 'real-time factor at 100 Hz (log scale)'\n"
+         "set logscale y\nset key top right\n" +
+         plot_by_mode("column(\"real_time_factor\")") + ", 1 with lines dt 2 title 'real time'\n" +
+         "set ylabel 'fleet tick / floor tick'\nset title 'tick against the IPC floor (same run)'\n"
+         "unset logscale y\nset key top left\n" +
+         plot_by_mode("column(\"x_floor\")") +
+         "\nset ylabel 'CPU s per simulated s'\nset title 'CPU cost (log scale)'\nset logscale y\n" +
+         plot_by_mode("column(\"cpu_s_per_sim_s\")") +
+         "\nunset logscale y\nset ylabel 'ms'\nset title 'plant tick, median'\n" +
+         plot_by_mode("column(\"tick_median_us\")/1000") +
+         "\nset ylabel 'MB'\nset title 'PSS per agent process, median'\nset yrange [0:*]\n" +
+         plot_by_mode("column(\"pss_agent_median_kB\")/1024") + ", " + std::to_string(kPssTargetMB) +
+         " with lines dt 2 title 'target'\nunset multiplot\n";
+}
+
+void plot(const std::string& dir) {
+  report::draw_plot(dir, "scale",
+                    "made by `maptr bench scale`; redraw with `maptr bench scale --replot --out DIR`",
+                    report::PlotFrame{"1500,900", ""}, plot_body());
+}
+
+/// The default scenario with n agents, every moving segment at kScaleSpeed, the last one
+/// stretched to the bench's duration.
+config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string& mode) {
+  config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/paper.yaml");
+  s.robot.agents = n;
+  s.mode = mode;
+  s.duration_s = o.duration_s;
+  s.trace_every = kScaleTraceEvery;
+  s.record = o.record;
+  s.realtime = o.realtime;
+  s.tick_filter = o.tick_filter;
+  if (o.plant_priority >= 0) s.plant_priority = o.plant_priority;
+  for (auto& seg : s.trajectory.segments)
+    if (seg.type != "stop") seg.speed_mps = kScaleSpeed;
+  if (s.trajectory.total_duration() < s.duration_s)
+    s.trajectory.segments.back().duration_s += s.duration_s - s.trajectory.total_duration();
+  s.validate();
+  return s;
+}
+
+/// Bytes the hosts sent into the bridge per tick (0 on one host).
+double bridge_bytes_per_tick(const records::Summary& sum) {
+  const double ticks = sum.number_or(records::summary_key::kTicks, 0);
+  double sent = 0;
+  for (const auto& h : sum.data().value("hosts", json::array())) sent += h.value("bytes_sent", 0.0);
+  return ticks > 0 ? sent / ticks : 0.0;
+}
+
+/// The memory columns of a row: an agent's PSS (median, largest) and the fleet's, kB and MB.
+json memory_json(const FleetMemory& mem) {
+  const long pss_max =
+      mem.agent_pss_kB.empty() ? 0 : *std::max_element(mem.agent_pss_kB.begin(), mem.agent_pss_kB.end());
+  return {{"pss_agent_median_kB", median(mem.agent_pss_kB)},
+          {"pss_agent_median_MB", median(mem.agent_pss_kB) / kKiB},
+          {"pss_agent_max_kB", pss_max},
+          {"pss_agent_max_MB", pss_max / kKiB},
+          {"pss_total_kB", mem.total_pss_kB},
+          {"pss_total_MB", mem.total_pss_kB / kKiB}};
+}
+
+/// One fleet size in one control mode on `hosts` hosts (1: this machine, no namespaces): its
+/// row of the table.
+json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
+  const std::string run_dir = o.out + "/runs/N" + std::to_string(n) + "-" + mode +
+                              (hosts > 1 ? "-hosts" + std::to_string(hosts) : "");
+  config::Scenario s = scale_scenario(o, n, mode);
+  if (hosts > 1) s.hosts.count = hosts;
+  FleetMemory mem;
+  FleetCost cost;
+  const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
+  // The hypervisor's share of this machine's CPU time during the fleet and during the floor: on
+  // a shared VM, what makes one sitting's ratios differ from another's.
+  const auto machine0 = read_machine_cpu();
+  const records::Summary sum(launch_isolated({s, run_dir, o.bin_dir, o.domain, run_dir + "/maptr.out"},
+                                             [&](const std::atomic<bool>& done) {
+                                               mem = sample_memory(run_dir, done);
+                                               cost = watch_fleet_cost(run_dir, cost_window(s.ticks()), done);
+                                             }));
+  const double cpu = cpu_seconds(RUSAGE_CHILDREN) - cpu0;
+  const auto machine1 = read_machine_cpu();
+  const double sim = sum.number_or(records::summary_key::kSimTime, 0),
+               wall = sum.number_or(records::summary_key::kWallTime, 0);
+  const std::string status = sum.status();
+  const records::TickTiming tick = sum.tick_timing("tick");
+  // The floor of the same shape, measured right after the fleet, on the same machine state.
+  const FloorResult floor = measure_floor(n + kAnswersBesideAgents);
+  const auto machine2 = read_machine_cpu();
+  const auto steal = [](const std::optional<MachineCpu>& a, const std::optional<MachineCpu>& b) {
+    return a && b ? steal_percent(*a, *b) : 0.0;
+  };
+  json row = {
+      {"agents", n},
+      {"mode", mode},
+      {"record", o.record},
+      {"realtime", o.realtime ? "yes" : "no"},
+      {"tick_filter", s.uses_tick_filter() ? "yes" : "no"},
+      {"plant_scheduling", sum.data().value("plant", json::object()).value("loop_scheduling", "")},
+      {"hosts", hosts},
+      {"wall_s", wall},
+      {"status", status.substr(0, status.find(':'))},
+      {"status_full", status},
+      {"status_text", status.size() > kStatusMdChars ? status.substr(0, kStatusMdChars) + "..." : status},
+      {"discovery_s", sum.number_or(records::summary_key::kDiscovery, 0)},
+      {"ticks_per_wall_s", wall > 0 ? sum.number_or(records::summary_key::kTicks, 0) / wall : 0.0},
+      {"real_time_factor", sum.number_or(records::summary_key::kRealTimeFactor, 0)},
+      {"cpu_s_per_sim_s", sim > 0 ? cpu / sim : 0.0},
+      {"samples_per_tick", n + 4},  // one PlantTick, N AgentReply, 2 GroupStatus, 1 CentralCommand
+      {"bridge_bytes_per_tick", bridge_bytes_per_tick(sum)},
+      {"tick_median_us", tick.median},
+      {"tick_median_ms", tick.median / 1000.0},
+      {"tick_p99_us", tick.p99},
+      {"tick_p99_ms", tick.p99 / 1000.0},
+      {"floor_median_us", floor.median_us},
+      {"x_floor", floor.median_us > 0 ? tick.median / floor.median_us : 0.0},
+      {"floor_cs_per_round", floor.ctx_switches_per_round},
+      {"floor_cpu_us_per_round", floor.cpu_us_per_round},
+      {"steal_pct_fleet", steal(machine0, machine1)},
+      {"steal_pct_floor", steal(machine1, machine2)}};
+  row.update(memory_json(mem));
+  row.update(fleet_cost_json(cost));
+  return row;
+}
+
+int replot(const BenchOptions& o) {
+  if (!fs::exists(o.out + "/scale.csv")) {
+    std::cerr << "maptr: bench scale --replot: no " << o.out << "/scale.csv\n";
+    return 2;
+  }
+  plot(o.out);
+  std::cerr << "maptr: redrew " << o.out << "/scale.png\n";
+  return 0;
+}
+
+}  // namespace
+
+int bench_scale(const BenchOptions& o) {
+  if (o.replot) return replot(o);
+  fs::create_directories(o.out);
+  report::Table t;
+  t.cols = columns();
+  std::ofstream csv(o.out + "/scale.csv");
+  csv << t.csv_header() << std::flush;
+  const ScaleThresholds limits{o.min_rtf, o.max_floor_ratio};
+  std::vector<std::string> headlines;
+  std::vector<records::JunitCase> cases;
+  int missed = 0;
+  std::vector<int> host_counts = {1};
+  if (o.hosts > 1) host_counts.push_back(o.hosts);
+  for (const std::string& mode : o.modes)  // a mode's rows together: its curves are unbroken
+    for (int n : o.agents)
+      for (int hosts : host_counts) {
+        std::cerr << "maptr: bench scale N=" << n << ", mode " << mode << ", on " << hosts << " host(s) ..."
+                  << std::flush;
+        const json row = measure(o, n, mode, hosts);
+        csv << t.csv_row(row) << std::flush;  // a later size that fails leaves the earlier rows
+        t.rows.push_back(row);
+        std::cerr << " CPU steal " << row["steal_pct_fleet"].get<double>() << " %\n";
+        const auto misses = scale_misses(row, limits);
+        headlines.push_back(scale_headline(row, misses));
+        std::cerr << "maptr: " << headlines.back() << "\n";
+        std::string failure;
+        for (const auto& m : misses) failure += (failure.empty() ? "" : "; ") + m;
+        cases.push_back(
+            {"N" + std::to_string(n) + "-" + mode + (hosts > 1 ? "-hosts" + std::to_string(hosts) : ""),
+             "maptr.bench.scale", row.value("wall_s", 0.0), failure});
+        missed += !misses.empty();
+      }
+  report::write_file(o.out + "/scale.md", t.md());
+  plot(o.out);
+  if (!o.junit.empty()) report::write_file(o.junit, records::junit_xml("maptr bench scale", cases));
+  for (const auto& h : headlines) std::cout << h << "\n";
+  std::cout << "bench scale: " << cases.size() - missed << " of " << cases.size() << " sizes pass";
+  if (o.min_rtf >= 0) std::cout << ", --min-rtf " << o.min_rtf;
+  if (o.max_floor_ratio >= 0) std::cout << ", --max-floor-ratio " << o.max_floor_ratio;
+  std::cout << "\nresults: " << o.out << "/scale.csv, scale.md (every column), scale.png"
+            << (o.junit.empty() ? "" : ", " + o.junit) << "\n";
+  return missed > 0 ? 1 : 0;
+}
+
+}  // namespace maptr::deploy
