@@ -5,7 +5,7 @@
 //   plant.json    the plant's results, under `plant` in summary.json (its struct, reader and
 //                 writer: records/plant_results.hpp)
 //   fleet.json    who is who while the fleet runs: the launcher's and every child's pid, name,
-//                 host and participant id (for `maptr top`, the benches and the soak)
+//                 host and participant id (its struct, reader and writer: records/fleet_file.hpp)
 // The other files have a header of their own: trace, assignments, level2_log, ledger_file, mcap.
 #include <nlohmann/json.hpp>
 #include <string>

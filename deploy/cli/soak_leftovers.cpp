@@ -12,6 +12,7 @@
 #include "comm/posix/shm_files.hpp"
 #include "deploy/fleet/shm_segments.hpp"
 #include "deploy/fleet/summary_build.hpp"
+#include "records/fleet_file.hpp"
 #include "records/run_files.hpp"
 
 namespace maptr::deploy::cli {
@@ -33,9 +34,8 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 
 void sample_segments(pid_t launcher, const std::string& dir, std::set<std::string>& out) {
   std::vector<pid_t> pids = {launcher};
-  const nlohmann::json fleet = records::read_json_object(records::fleet_file_path(dir));
-  if (fleet.contains("fleet_id"))
-    for (pid_t p : pids_of_fleet(std::to_string(fleet.value("fleet_id", 0LL)))) pids.push_back(p);
+  if (const auto fleet = records::read_fleet_file(dir))
+    for (pid_t p : pids_of_fleet(std::to_string(fleet->fleet_id))) pids.push_back(p);
   for (pid_t p : pids)
     for (const auto& s : fleet::segments_mapped_by(p)) out.insert(s);
 }
@@ -57,9 +57,9 @@ std::vector<pid_t> pids_of_fleet(const std::string& fleet_id) {
 }
 
 std::string check_leftovers(const std::string& run_dir) {
-  const nlohmann::json fleet = records::read_json_object(records::fleet_file_path(run_dir));
-  if (!fleet.contains("fleet_id")) return "";  // the fleet never started
-  const std::string id = std::to_string(fleet.value("fleet_id", 0LL));
+  const auto fleet = records::read_fleet_file(run_dir);
+  if (!fleet) return "";  // the fleet never started
+  const std::string id = std::to_string(fleet->fleet_id);
   const auto t0 = Clock::now();
   std::vector<pid_t> left = pids_of_fleet(id);
   while (!left.empty() && since(t0) < kLeftoverGraceS) {

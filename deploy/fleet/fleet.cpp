@@ -17,6 +17,7 @@
 #include "comm/posix/shm_files.hpp"
 #include "deploy/fleet/secure_domain.hpp"
 #include "deploy/fleet/shm_cleanup.hpp"
+#include "records/fleet_file.hpp"
 #include "records/run_files.hpp"
 
 namespace maptr::deploy::fleet {
@@ -190,24 +191,25 @@ void Fleet::learn_secure_plant(const eprosima::fastrtps::rtps::InstanceHandle_t&
 
 void Fleet::write_fleet() const {
   // The fleet's coordinates, for tools and for processes started by hand.
-  nlohmann::json fleet = {{"launcher_pid", getpid()},
-                          {"domain", o_.domain},
-                          {"discovery_server", ds_.empty() ? nlohmann::json() : nlohmann::json(dds_.discovery_server)},
-                          {"discovery_server_pid", ds_.empty() ? nlohmann::json() : nlohmann::json(ds_.front()->pid())},
-                          {"discovery_own", dds_.own_server},
-                          {"secure", secure()},
-                          {"security_dir", dds_.security_dir},
-                          {"lease_s", dds_.lease_s},
-                          {"fleet_id", dds_.fleet_id},
-                          {"config", cfg_path_},
-                          {"run_dir", o_.run_dir},
-                          {"bin_dir", o_.bin_dir}};
-  for (const auto& c : kids_) {
-    fleet["processes"].push_back(
-        {{"name", c.name}, {"pid", c.pid}, {"external", c.external}, {"participant_id", c.base_id}});
-    if (c.host >= 0) fleet["processes"].back()["host"] = config::host_name(c.host);
+  records::FleetFile f;
+  f.launcher_pid = getpid();
+  f.domain = o_.domain;
+  if (!ds_.empty()) {
+    f.discovery_server = dds_.discovery_server;
+    f.discovery_server_pid = ds_.front()->pid();
   }
-  records::write_json_file(records::fleet_file_path(o_.run_dir), fleet);
+  f.discovery_own = dds_.own_server;
+  f.secure = secure();
+  f.security_dir = dds_.security_dir;
+  f.lease_s = dds_.lease_s;
+  f.fleet_id = dds_.fleet_id;
+  f.config = cfg_path_;
+  f.run_dir = o_.run_dir;
+  f.bin_dir = o_.bin_dir;
+  for (const auto& c : kids_)
+    f.processes.push_back({c.name, c.pid, c.external, c.base_id,
+                           c.host >= 0 ? std::optional(config::host_name(c.host)) : std::nullopt});
+  records::write_fleet_file(o_.run_dir, f);
 }
 
 void Fleet::spawn_child(Child& c) {

@@ -14,6 +14,7 @@
 #include "comm/posix/udp_ports.hpp"
 #include "config/scenario.hpp"
 #include "idl/maptrPubSubTypes.h"
+#include "records/fleet_file.hpp"
 #include "records/run_files.hpp"
 
 namespace maptr::top {
@@ -100,28 +101,23 @@ double steady_now_s() {
 }
 
 FleetCoordinates read_fleet(const std::string& run_dir) {
-  const std::string path = records::fleet_file_path(run_dir);
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": no such file (not a run folder, or the fleet has not started)");
-  nlohmann::json j;
-  try {
-    in >> j;
-    FleetCoordinates c;
-    c.info.run_dir = run_dir;
-    c.info.domain = j.at("domain").get<int>();
-    c.discovery_server = j.at("discovery_server").get<std::string>();
-    c.discovery_own = j.value("discovery_own", -1);
-    c.lease_s = j.at("lease_s").get<double>();
-    c.fleet_id = j.at("fleet_id").get<uint32_t>();
-    c.launcher_pid = j.at("launcher_pid").get<int>();
-    const config::Scenario sc = config::load_scenario(j.at("config").get<std::string>());
-    c.info.scenario = sc.name;
-    c.info.agents = sc.robot.agents;
-    c.info.duration_s = sc.duration_s;
-    return c;
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(path + ": " + e.what());
-  }
+  const records::FleetFile f = records::require_fleet_file(run_dir);
+  if (!f.discovery_server)
+    throw std::runtime_error(records::fleet_file_path(run_dir) +
+                             ": no discovery server (the fleet has not started)");
+  FleetCoordinates c;
+  c.info.run_dir = run_dir;
+  c.info.domain = f.domain;
+  c.discovery_server = *f.discovery_server;
+  c.discovery_own = f.discovery_own;
+  c.lease_s = f.lease_s;
+  c.fleet_id = static_cast<uint32_t>(f.fleet_id);
+  c.launcher_pid = static_cast<int>(f.launcher_pid);
+  const config::Scenario sc = config::load_scenario(f.config);
+  c.info.scenario = sc.name;
+  c.info.agents = sc.robot.agents;
+  c.info.duration_s = sc.duration_s;
+  return c;
 }
 
 struct FleetReader::Inboxes {

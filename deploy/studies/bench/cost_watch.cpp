@@ -78,9 +78,9 @@ bool wait_for_tick(const std::string& trace, long long tick, const std::atomic<b
 FleetCost watch_fleet_cost(const std::string& run_dir, const TickWindow& w, const std::atomic<bool>& done) {
   const std::string trace = run_dir + "/trace.csv";
   if (!wait_for_tick(trace, w.start_tick, done)) return {};
-  const nlohmann::json fleet = records::read_json_object(records::fleet_file_path(run_dir));
-  if (fleet.empty()) return {};
-  const std::vector<FleetProc> procs = fleet_processes(fleet);
+  const auto fleet = records::read_fleet_file(run_dir);
+  if (!fleet) return {};
+  const std::vector<FleetProc> procs = fleet_processes(*fleet);
   const FleetSample start = sample(procs, trace);
   FleetSample end;
   auto next_fallback = Clock::now() + kFallbackEvery;

@@ -16,14 +16,11 @@ double per_process(double total, int n) { return n > 0 ? total / n : 0.0; }
 
 }  // namespace
 
-std::vector<FleetProc> fleet_processes(const nlohmann::json& fleet) {
+std::vector<FleetProc> fleet_processes(const records::FleetFile& fleet) {
   std::vector<FleetProc> out;
-  for (const auto& p : fleet.value("processes", nlohmann::json::array())) {
-    const std::string name = p.value("name", "");
-    out.push_back({name, p.value("pid", 0L), kind_of(name)});
-  }
-  if (fleet.contains("discovery_server_pid"))
-    out.push_back({"discovery-server", fleet["discovery_server_pid"].get<long>(), ProcKind::kDiscovery});
+  for (const auto& p : fleet.processes) out.push_back({p.name, p.pid, kind_of(p.name)});
+  if (fleet.discovery_server_pid)
+    out.push_back({"discovery-server", *fleet.discovery_server_pid, ProcKind::kDiscovery});
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "deploy/studies/bench/proc_stats.hpp"
+#include "records/fleet_file.hpp"
 
 namespace maptr::deploy {
 
@@ -23,7 +24,7 @@ struct FleetProc {
 
 /// The fleet's processes as fleet.json names them (processes[], discovery_server_pid); the
 /// launcher itself is left out.
-std::vector<FleetProc> fleet_processes(const nlohmann::json& fleet);
+std::vector<FleetProc> fleet_processes(const records::FleetFile& fleet);
 
 /// Every process's counters at one moment, in fleet_processes order, and the tick then.
 struct FleetSample {

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "records/fleet_file.hpp"
 #include "records/run_files.hpp"
 
 namespace maptr::deploy {
@@ -46,18 +47,16 @@ bool wait_under_way(const std::string& run_dir, const std::atomic<bool>& done) {
 FleetMemory sample_memory(const std::string& run_dir, const std::atomic<bool>& done) {
   FleetMemory m;
   if (!wait_under_way(run_dir, done)) return m;
-  const nlohmann::json fleet = records::read_json_object(records::fleet_file_path(run_dir));
-  for (const auto& p : fleet.value("processes", nlohmann::json::array())) {
-    const long kb = pss_kB(p["pid"].get<long>());
+  const auto fleet = records::read_fleet_file(run_dir);
+  if (!fleet) return m;
+  for (const auto& p : fleet->processes) {
+    const long kb = pss_kB(p.pid);
     if (kb < 0) continue;
     m.total_pss_kB += kb;
-    const std::string name = p["name"];
-    if (name[0] == 'L' || name[0] == 'R') m.agent_pss_kB.push_back(kb);
+    if (p.name[0] == 'L' || p.name[0] == 'R') m.agent_pss_kB.push_back(kb);
   }
-  if (fleet.contains("launcher_pid")) {
-    const long launcher = pss_kB(fleet["launcher_pid"].get<long>());
-    if (launcher > 0) m.total_pss_kB += launcher;
-  }
+  const long launcher = pss_kB(fleet->launcher_pid);
+  if (launcher > 0) m.total_pss_kB += launcher;
   return m;
 }
 
