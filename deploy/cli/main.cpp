@@ -17,7 +17,7 @@
 #include "deploy/cli/soak_command.hpp"
 #include "deploy/cli/study_commands.hpp"
 #include "deploy/cli/top_command.hpp"
-#include "deploy/fleet/environment.hpp"
+#include "deploy/fleet/environment_check.hpp"
 
 using namespace maptr::deploy::cli;
 

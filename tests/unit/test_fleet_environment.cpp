@@ -3,7 +3,7 @@
 #include <map>
 #include <string>
 
-#include "deploy/fleet/environment.hpp"
+#include "deploy/fleet/environment_check.hpp"
 
 using maptr::deploy::fleet::environment_error;
 

@@ -1,4 +1,4 @@
-#include "deploy/fleet/environment.hpp"
+#include "deploy/fleet/environment_check.hpp"
 
 #include <vector>
 
