@@ -66,4 +66,16 @@ msg::GroupStatus group_status(const msg::PlantTick& t, int side, const control::
   return st;
 }
 
+control::Level2Decision level2_of(const msg::GroupStatus& st) {
+  control::Level2Decision d;
+  d.status = static_cast<uint8_t>(st.level2_status());
+  d.relaxed = st.level2_relaxed();
+  d.oracle_n_active = st.oracle_n_active();
+  d.solve_ms = st.solve_time_ms();
+  d.n_live = st.n_live();
+  d.n_other = st.n_other();
+  d.n_target = st.n_active();
+  return d;
+}
+
 }  // namespace maptr::group

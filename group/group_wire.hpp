@@ -15,4 +15,8 @@ control::GroupInput group_input(const msg::PlantTick& t, int side);
 msg::GroupStatus group_status(const msg::PlantTick& t, int side, const control::GroupInput& in,
                               const control::GroupDecision& d, const control::Ledger& ledger);
 
+/// The Level-2 decision a status carries (what the message holds of it: its status, the relaxed
+/// optimum, the oracle's count, the solve time, the side's live and the other side's counts).
+control::Level2Decision level2_of(const msg::GroupStatus& st);
+
 }  // namespace maptr::group

@@ -12,6 +12,22 @@ namespace maptr::control {
 /// kL2Failed: the solver reported a failure.
 enum Level2Status : uint8_t { kL2None = 0, kL2Ok = 1, kL2Infeasible = 2, kL2Failed = 3 };
 
+/// "none", "ok", "infeasible", "failed"; "?" for a code that is none of them.
+inline const char* level2_status_name(uint8_t s) {
+  switch (s) {
+    case kL2None:
+      return "none";
+    case kL2Ok:
+      return "ok";
+    case kL2Infeasible:
+      return "infeasible";
+    case kL2Failed:
+      return "failed";
+    default:
+      return "?";
+  }
+}
+
 struct Level2Decision {
   double t_s = 0.0;          ///< s, time of the tick whose inputs the decision used
   int n_live = 0;            ///< live agents of the side when it was applied

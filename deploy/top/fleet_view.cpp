@@ -1,9 +1,11 @@
 #include "deploy/top/fleet_view.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+
+#include "group/group_wire.hpp"
 
 namespace maptr::top {
 
@@ -168,11 +170,9 @@ void FleetView::on_group(const msg::GroupStatus& g) {
   v.group_heard = true;
   v.group_died = false;
   v.group_tick = static_cast<long long>(g.tick());
-  v.level2 = g.level2_status();
+  v.level2 = group::level2_of(g);
   v.group_n_active = g.n_active();
   v.group_n_live = g.n_live();
-  v.level2_relaxed = g.level2_relaxed();
-  v.solve_time_ms = g.solve_time_ms();
   v.decisions = g.decisions();
   v.reallocations = g.reallocations();
   for (std::size_t i = 0; i < v.agents.size() && i < g.wear_m().size(); ++i)

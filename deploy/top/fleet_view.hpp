@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "control/level2/status.hpp"
 #include "idl/maptr.h"
 
 namespace maptr::top {
@@ -57,10 +58,8 @@ struct SideView {
   bool group_heard = false;                     ///< a GroupStatus arrived
   long long group_tick = -1;                    ///< tick of the last GroupStatus
   bool group_died = false;                      ///< the launcher said the group died
-  msg::Level2Status level2 = msg::L2_NONE;
+  control::Level2Decision level2;  ///< the group's last Level-2 decision, as its status carries it
   int group_n_active = 0, group_n_live = 0;
-  double level2_relaxed = 0.0;  ///< relaxed optimum
-  double solve_time_ms = 0.0;   ///< ms
   uint64_t decisions = 0, reallocations = 0;
   std::vector<AgentCell> agents;
 };

@@ -29,20 +29,6 @@ std::string fmt(const char* f, ...) {
   return buf;
 }
 
-const char* level2_name(msg::Level2Status s) {
-  switch (s) {
-    case msg::L2_NONE:
-      return "none";
-    case msg::L2_OK:
-      return "ok";
-    case msg::L2_INFEASIBLE:
-      return "infeasible";
-    case msg::L2_SOLVER_FAILED:
-      return "failed";
-  }
-  return "?";
-}
-
 std::vector<std::string> head(const FleetView& v) {
   std::vector<std::string> out;
   std::string h = fmt("maptr top  %s  %d agents  domain %d  ", v.info().scenario.c_str(), v.info().agents,
@@ -60,10 +46,12 @@ std::vector<std::string> head(const FleetView& v) {
   out.push_back("side battery  discharge     active  Level 2     N_a relaxed solve     Level 3");
   for (int s = 0; s < 2; ++s) {
     const SideView& sv = v.side(s);
-    const char* l2 = sv.group_died ? "group dead" : v.group_silent(s) ? "silent" : level2_name(sv.level2);
+    const char* l2 = sv.group_died       ? "group dead"
+                     : v.group_silent(s) ? "silent"
+                                         : control::level2_status_name(sv.level2.status);
     out.push_back(fmt("%-4s %5.2f V %9.3f mAh  %2d/%-3d  %-10s  %3d %7.2f %6.1f ms  %llu realloc", kSide[s],
                       sv.battery_V, sv.discharge_mAh, sv.n_active, static_cast<int>(sv.agents.size()), l2,
-                      sv.group_n_active, sv.level2_relaxed, sv.solve_time_ms,
+                      sv.group_n_active, sv.level2.relaxed, sv.level2.solve_ms,
                       static_cast<unsigned long long>(sv.reallocations)));
   }
   return out;

@@ -106,4 +106,26 @@ TEST(GroupWire, TheStatusCarriesTheDecisionAndTheLevel2Outcome) {
   EXPECT_EQ(maptr::group::group_status(t, 1, in, d, ledger).level2_status(), msg::L2_NONE);
 }
 
+TEST(GroupWire, TheDecisionAStatusCarriesIsReadBackAsTheCoresRecord) {
+  const msg::PlantTick t = two_sided_tick();
+  const auto in = maptr::group::group_input(t, 1);
+  maptr::control::GroupDecision d;
+  d.active = {1, 0, 0, 1};
+  d.n_active = 2;
+  d.n_live = 3;
+  d.level2.status = maptr::control::kL2Ok;
+  d.level2.relaxed = 2.25;
+  d.level2.oracle_n_active = 2;
+  d.level2.solve_ms = 0.75;
+  maptr::control::Ledger ledger(4);
+  const auto back = maptr::group::level2_of(maptr::group::group_status(t, 1, in, d, ledger));
+  EXPECT_EQ(back.status, maptr::control::kL2Ok);
+  EXPECT_DOUBLE_EQ(back.relaxed, 2.25);
+  EXPECT_EQ(back.oracle_n_active, 2);
+  EXPECT_DOUBLE_EQ(back.solve_ms, 0.75);
+  EXPECT_EQ(back.n_live, 3);
+  EXPECT_EQ(back.n_target, 2);
+  EXPECT_STREQ(maptr::control::level2_status_name(back.status), "ok");
+}
+
 }  // namespace

@@ -148,7 +148,9 @@ TEST(TopView, GroupStatusSpeedAndFinalStatus) {
   g.tick(101);
   g.reallocations(4);
   v.on_group(g);
-  EXPECT_EQ(v.side(1).level2, msg::L2_INFEASIBLE);
+  EXPECT_EQ(v.side(1).level2.status, maptr::control::kL2Infeasible);
+  EXPECT_DOUBLE_EQ(v.side(1).level2.relaxed, 1.4);
+  EXPECT_DOUBLE_EQ(v.side(1).level2.solve_ms, 4.5);
   EXPECT_DOUBLE_EQ(v.side(1).agents[0].wear_m, 12.0);
   EXPECT_FALSE(v.group_silent(1));
   EXPECT_TRUE(v.group_silent(0));
