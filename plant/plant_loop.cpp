@@ -12,6 +12,7 @@
 #include "config/scenario.hpp"
 #include "idl/rules.hpp"
 #include "plant/discovery_wait.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::plant {
 
@@ -127,7 +128,7 @@ void PlantLoop::set_scheduling(std::string what) {
 }
 
 void PlantLoop::open_records() {
-  files_ = open_csv_run_files(run_dir_ + "/trace.csv", run_dir_ + "/assignments.csv");
+  files_ = open_csv_run_files(records::trace_path(run_dir_), records::assignments_path(run_dir_));
   wall0_ = Clock::now();
 }
 

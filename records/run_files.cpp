@@ -9,6 +9,9 @@ namespace maptr::records {
 std::string summary_path(const std::string& run_dir) { return run_dir + "/summary.json"; }
 std::string plant_results_path(const std::string& run_dir) { return run_dir + "/plant.json"; }
 std::string fleet_file_path(const std::string& run_dir) { return run_dir + "/fleet.json"; }
+std::string trace_path(const std::string& run_dir) { return run_dir + "/trace.csv"; }
+std::string assignments_path(const std::string& run_dir) { return run_dir + "/assignments.csv"; }
+std::string mcap_path(const std::string& run_dir) { return run_dir + "/run.mcap"; }
 
 void write_json_file(const std::string& path, const nlohmann::json& j) {
   const std::string tmp = path + ".tmp";

@@ -15,6 +15,11 @@ namespace maptr::records {
 std::string summary_path(const std::string& run_dir);
 std::string plant_results_path(const std::string& run_dir);
 std::string fleet_file_path(const std::string& run_dir);
+/// The plant's per-tick trace (records/trace.hpp), its assignment changes (records/assignments.hpp)
+/// and the recording of the fleet's messages (records/mcap.hpp).
+std::string trace_path(const std::string& run_dir);
+std::string assignments_path(const std::string& run_dir);
+std::string mcap_path(const std::string& run_dir);
 
 /// Writes `j` (indented, one line at the end) to `path` through a temporary file and a rename,
 /// so that a reader never sees half a file; throws std::runtime_error if it cannot be written.

@@ -48,7 +48,7 @@ int cmd_ps(const PsArgs& a) {
   for (const auto& f : fleets) {
     const double t = fleet::trace_time_s(f.run_dir);
     if (a.json) {
-      auto j = fleet::to_json(f);
+      nlohmann::json j = f;
       j["sim_time_s"] = std::isfinite(t) ? nlohmann::json(t) : nlohmann::json(nullptr);
       std::cout << j.dump() << "\n";
       continue;

@@ -12,6 +12,7 @@
 #include "recorder/recorder.hpp"
 #include "recorder/replay.hpp"
 #include "records/mcap.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy::cli {
 
@@ -25,7 +26,7 @@ std::atomic<bool>& replay_stop() {
 void on_signal(int) { replay_stop().store(true); }
 
 std::string mcap_path(const std::string& run) {
-  return std::filesystem::is_directory(run) ? run + "/run.mcap" : run;
+  return std::filesystem::is_directory(run) ? records::mcap_path(run) : run;
 }
 
 /// What a replay will leave out: "" when nothing, else e.g. "12 forged, 3 undecodable".

@@ -250,7 +250,7 @@ void write_report(const Soak& s) {
                       {"failed_checks", s.totals.failed_checks},
                       {"statuses", s.totals.statuses},
                       {"fleet_results", s.fleets}};
-  std::ofstream(s.out + "/soak.json") << j.dump(2) << "\n";
+  records::write_json_file(s.out + "/soak.json", j);
 }
 
 /// The soak's scenario and folder, checked; throws config::ScenarioError on bad input.

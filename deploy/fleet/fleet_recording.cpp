@@ -7,6 +7,7 @@
 #include "comm/posix/shm_files.hpp"
 #include "deploy/fleet/fleet.hpp"
 #include "records/compression.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -20,7 +21,7 @@ void Fleet::start_recorder() {
   o.participant_id = id <= comm::rtps_max_participant_id(o_.domain) ? id : -1;
   o.shm_port_queue = static_cast<uint32_t>(cfg_.recorder_port_queue(sc_.robot.agents));
   recorder_id_ = o.participant_id;
-  recorder_ = std::make_unique<recorder::Recorder>(o, o_.run_dir + "/run.mcap", scope, sc_.robot.agents,
+  recorder_ = std::make_unique<recorder::Recorder>(o, records::mcap_path(o_.run_dir), scope, sc_.robot.agents,
                                                    records::mcap_compression(sc_.record_compression));
 }
 

@@ -13,31 +13,11 @@
 
 #include "comm/posix/environment.hpp"
 #include "deploy/fleet/control_fifo.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy::fleet {
 
 namespace fs = std::filesystem;
-
-nlohmann::json to_json(const FleetEntry& e) {
-  return {{"run_dir", e.run_dir},         {"scenario", e.scenario}, {"pid", e.pid},
-          {"start_ticks", e.start_ticks}, {"domain", e.domain},     {"started_unix_s", e.started_unix_s}};
-}
-
-std::optional<FleetEntry> fleet_entry_from(const nlohmann::json& j) {
-  try {
-    FleetEntry e;
-    e.run_dir = j.at("run_dir").get<std::string>();
-    e.scenario = j.at("scenario").get<std::string>();
-    e.pid = j.at("pid").get<int>();
-    e.start_ticks = j.at("start_ticks").get<long long>();
-    e.domain = j.at("domain").get<int>();
-    e.started_unix_s = j.at("started_unix_s").get<double>();
-    if (e.pid <= 1 || e.run_dir.empty() || e.run_dir[0] != '/') return std::nullopt;
-    return e;
-  } catch (const nlohmann::json::exception&) {
-    return std::nullopt;
-  }
-}
 
 std::string registry_dir(const char* xdg_runtime_dir, unsigned uid) {
   if (xdg_runtime_dir && xdg_runtime_dir[0] == '/') return std::string(xdg_runtime_dir) + "/maptr/fleets";
@@ -80,11 +60,8 @@ FleetRegistration::FleetRegistration(const std::string& run_dir, const std::stri
   e.started_unix_s = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   path_ = dir + "/" + std::to_string(e.pid) + ".json";
   (void)running_fleets();  // drops the entries of launchers killed before they could remove theirs
-  // Written whole, then renamed: a reader never sees half an entry.
-  const std::string tmp = path_ + ".tmp";
-  std::ofstream(tmp) << to_json(e).dump() << "\n";
-  fs::rename(tmp, path_, ec);
-  if (ec) path_.clear();  // no registry here: the fleet runs unregistered (found under runs/)
+  if (!records::write_registry_entry(path_, e))
+    path_.clear();  // no registry here: the fleet runs unregistered (found under runs/)
 }
 
 FleetRegistration::~FleetRegistration() {
@@ -97,9 +74,7 @@ std::vector<FleetEntry> running_fleets() {
   std::error_code ec;
   for (const auto& f : fs::directory_iterator(registry_dir(), ec)) {
     if (f.path().extension() != ".json") continue;
-    std::ifstream in(f.path());
-    const auto j = nlohmann::json::parse(in, nullptr, false);
-    const auto e = fleet_entry_from(j);
+    const auto e = records::read_registry_entry(f.path().string());
     if (!e) continue;
     const bool launcher_runs = process_start_ticks(e->pid) == e->start_ticks;
     if (!launcher_runs) {
@@ -113,7 +88,7 @@ std::vector<FleetEntry> running_fleets() {
 }
 
 double trace_time_s(const std::string& run_dir) {
-  std::ifstream in(run_dir + "/trace.csv", std::ios::binary);
+  std::ifstream in(records::trace_path(run_dir), std::ios::binary);
   if (!in) return std::nan("");
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();

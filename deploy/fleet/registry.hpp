@@ -6,26 +6,15 @@
 // launcher (pid and start time, against pid reuse) runs and its run folder's control FIFO is
 // there, and removes the entries of launchers that are gone. `maptr ps` lists them; `top`,
 // `kill`, `pause`, ... take the newest by default.
-#include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
+#include "records/registry_entry.hpp"
+
 namespace maptr::deploy::fleet {
 
-/// One registered fleet.
-struct FleetEntry {
-  std::string run_dir;   ///< absolute
-  std::string scenario;  ///< its name
-  int pid = 0;           ///< the launcher's
-  long long start_ticks = 0;  ///< the launcher's start time (/proc/PID/stat field 22)
-  int domain = 0;
-  double started_unix_s = 0;  ///< when it registered (wall clock, for ordering)
-};
-
-nlohmann::json to_json(const FleetEntry& e);
-/// nullopt when `j` is not a well-formed entry (a file of something else is ignored).
-std::optional<FleetEntry> fleet_entry_from(const nlohmann::json& j);
+/// One registered fleet (its file: records/registry_entry.hpp).
+using FleetEntry = records::RegistryEntry;
 
 /// The registry folder: from XDG_RUNTIME_DIR, the user id and `root` (pure: the caller passes
 /// the environment).

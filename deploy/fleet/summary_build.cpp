@@ -162,7 +162,7 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
                    [](const nlohmann::json& a, const nlohmann::json& b) { return a.value("at_s", 0.0) < b.value("at_s", 0.0); });
   const std::vector<records::MembershipEvent> plant_events =
       plant ? plant->membership_events : std::vector<records::MembershipEvent>{};
-  analyse_faults(failures, plant_events, run_dir + "/trace.csv", sc.robot.wheel_radius_m);
+  analyse_faults(failures, plant_events, records::trace_path(run_dir), sc.robot.wheel_radius_m);
   s["failures"] = failures;
   s["membership_events"] = membership_events(plant_events, r.failures);
   if (r.chaos_seed >= 0) s["chaos_seed"] = r.chaos_seed;
@@ -185,7 +185,7 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   if (!r.hosts.is_null()) s["hosts"] = r.hosts;
   s["recording"] = recording_check(r.recorded, plant);
   if (s["recording"].is_object()) s["recording"]["rejected"] = r.recorded_rejected;
-  const std::string trace = run_dir + "/trace.csv";
+  const std::string trace = records::trace_path(run_dir);
   s["trace_sha256"] = std::filesystem::exists(trace) ? sha256_of(trace) : "";
   s["status"] = kids.empty() ? r.status : final_status(r.status, plant, kids.front());
   return s;

@@ -327,7 +327,7 @@ bool draw_run_plot(const std::string& run_dir) {
   const config::Scenario sc = config::load_scenario(run_dir + "/scenario.yaml");
   const records::Summary s = records::Summary::read(records::summary_path(run_dir));
   std::ostringstream text;
-  text << std::ifstream(run_dir + "/trace.csv").rdbuf();
+  text << std::ifstream(records::trace_path(run_dir)).rdbuf();
   const TracePath path = scan_trace(text.str());
   std::vector<RunEvent> events = run_events(s.data());
   place_events(events, path);

@@ -31,7 +31,7 @@ bool run_is_live(const std::string& run_dir) {
 
 std::optional<FleetCoordinates> replay_coordinates(const std::string& run_dir, const ReplayRequest& r,
                                                    std::string& why) {
-  if (!std::filesystem::exists(run_dir + "/run.mcap")) {
+  if (!std::filesystem::exists(records::mcap_path(run_dir))) {
     why = run_dir +
           " has ended and has no recording to replay (no run.mcap: it ran with --record none, or "
           "before runs were recorded)";
@@ -91,7 +91,7 @@ void Watch::poll() {
     return;
   }
   const std::string dir = c_.info.run_dir;
-  if (!reader_ && !ended_ && std::filesystem::exists(dir + "/trace.csv"))
+  if (!reader_ && !ended_ && std::filesystem::exists(records::trace_path(dir)))
     reader_ = std::make_unique<FleetReader>(c_);
   if (reader_) reader_->drain_into(view_);
   view_.observe(steady_now_s());

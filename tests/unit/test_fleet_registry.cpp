@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "deploy/fleet/control_fifo.hpp"
 #include "deploy/fleet/registry.hpp"
@@ -41,19 +42,26 @@ TEST(FleetRegistry, LivesInTheUsersRuntimeDirectory) {
 }
 
 TEST(FleetRegistry, AnEntryReadsBackAndAMalformedOneIsIgnored) {
+  using maptr::records::parse_registry_entry;
+  using maptr::records::registry_entry_text;
   FleetEntry e{"/data/run", "loop", 4242, 777, 12, 1.5e9};
-  const auto back = fleet_entry_from(to_json(e));
+  const auto back = parse_registry_entry(registry_entry_text(e));
   ASSERT_TRUE(back);
   EXPECT_EQ(back->run_dir, "/data/run");
   EXPECT_EQ(back->pid, 4242);
   EXPECT_EQ(back->start_ticks, 777);
-  EXPECT_FALSE(fleet_entry_from(nlohmann::json{{"run_dir", "/x"}}));
-  auto relative = to_json(e);
-  relative["run_dir"] = "runs/x";
-  EXPECT_FALSE(fleet_entry_from(relative));
-  auto init = to_json(e);
-  init["pid"] = 1;
-  EXPECT_FALSE(fleet_entry_from(init));
+  EXPECT_DOUBLE_EQ(back->started_unix_s, 1.5e9);
+  EXPECT_FALSE(parse_registry_entry(R"({"run_dir": "/x"})"));
+  EXPECT_FALSE(parse_registry_entry("not json"));
+  FleetEntry relative = e;
+  relative.run_dir = "runs/x";
+  EXPECT_FALSE(parse_registry_entry(registry_entry_text(relative)));
+  FleetEntry init = e;
+  init.pid = 1;
+  EXPECT_FALSE(parse_registry_entry(registry_entry_text(init)));
+  auto wrong_type = nlohmann::json::parse(registry_entry_text(e));
+  wrong_type["pid"] = "4242";
+  EXPECT_FALSE(parse_registry_entry(wrong_type.dump()));
 }
 
 TEST(FleetRegistry, ARegisteredFleetIsListedUntilItsRegistrationEnds) {
@@ -85,10 +93,11 @@ TEST(FleetRegistry, TheEntryOfALauncherThatIsGoneIsRemoved) {
   waitpid(child, nullptr, 0);  // a pid that no longer runs
   fs::create_directories(registry_dir());
   const std::string entry = registry_dir() + "/" + std::to_string(child) + ".json";
-  std::ofstream(entry) << to_json(FleetEntry{d.path, "gone", child, 5, 0, 1.0}).dump();
+  ASSERT_TRUE(maptr::records::write_registry_entry(entry, FleetEntry{d.path, "gone", child, 5, 0, 1.0}));
   // The same pid with another start time (a reused pid) is gone too.
   const std::string reused = registry_dir() + "/" + std::to_string(getpid()) + ".json";
-  std::ofstream(reused) << to_json(FleetEntry{d.path, "reused", getpid(), process_start_ticks(getpid()) + 1, 0, 2.0}).dump();
+  ASSERT_TRUE(maptr::records::write_registry_entry(
+      reused, FleetEntry{d.path, "reused", getpid(), process_start_ticks(getpid()) + 1, 0, 2.0}));
   EXPECT_TRUE(running_fleets().empty());
   EXPECT_FALSE(fs::exists(entry));
   EXPECT_FALSE(fs::exists(reused));

@@ -1,19 +1,23 @@
-// deploy/report: the tables and plots of experiments and benches.
+// records/result_table (the result tables of experiments and benches) and deploy/report (their plots).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "deploy/report/gnuplot.hpp"
-#include "deploy/report/table.hpp"
 #include "records/csv.hpp"
+#include "records/result_table.hpp"
 
 using namespace maptr::deploy::report;
+using maptr::records::read_result_table;
+using maptr::records::ResultTable;
+using maptr::records::ResultTableWriter;
+using maptr::records::write_text_file;
 using nlohmann::json;
 
 namespace {
-Table sample() {
-  Table t;
+ResultTable sample() {
+  ResultTable t;
   t.cols = {{"gross_kg", "gross kg", 1},
             {"E_kJ", "E kJ", 2},
             {"active", "active", 0},
@@ -45,9 +49,9 @@ TEST(ReportTable, WrittenThenReadBack) {
   const auto path =
       (std::filesystem::temp_directory_path() / ("maptr_report_" + std::to_string(::getpid()) + ".csv"))
           .string();
-  const Table t = sample();
-  write_file(path, t.csv());
-  const auto rows = read_table_csv(path, t.cols);
+  const ResultTable t = sample();
+  t.write_csv(path);
+  const auto rows = read_result_table(path, t.cols);
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_DOUBLE_EQ(rows[0]["E_kJ"].get<double>(), 92.33);  // at the column's decimals
   EXPECT_EQ(rows[0]["active"].get<double>(), 3);
@@ -55,12 +59,29 @@ TEST(ReportTable, WrittenThenReadBack) {
   EXPECT_EQ(rows[1]["status"], "degraded: L3 died, restarted");
   auto cols = t.cols;
   cols.push_back({"missing", "m", 1});
-  EXPECT_THROW(read_table_csv(path, cols), maptr::records::RecordError);
+  EXPECT_THROW(read_result_table(path, cols), maptr::records::RecordError);
+  std::filesystem::remove(path);
+}
+
+TEST(ReportTable, AWriterLeavesEveryRowAppendedSoFar) {
+  const auto path =
+      (std::filesystem::temp_directory_path() / ("maptr_rows_" + std::to_string(::getpid()) + ".csv"))
+          .string();
+  const ResultTable t = sample();
+  ResultTableWriter w(path, t.cols);
+  w.append(t.rows[0]);
+  {  // read while the writer is still open: the header and the first row are on disk
+    std::ifstream in(path);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_EQ(text, "gross_kg,E_kJ,active,hidden,status\n13.2,92.33,3,0.500,ok\n");
+  }
+  w.append(t.rows[1]);
+  EXPECT_EQ(read_result_table(path, t.cols).size(), 2u);
   std::filesystem::remove(path);
 }
 
 TEST(ReportTable, CsvOnlyAndMarkdownOnlyColumns) {
-  Table t;
+  ResultTable t;
   t.cols = {{"pss_kB", "", 0, false, true}, {"pss_MB", "PSS MB", 1, true, false}};
   t.rows = {{{"pss_kB", 10240.0}, {"pss_MB", 10.0}}};
   EXPECT_EQ(t.csv(), "pss_kB\n10240\n");
@@ -83,8 +104,8 @@ TEST(ReportGnuplot, ScriptNamesTheColumns) {
 TEST(ReportGnuplot, DrawsThePngFromTheCsv) {
   const auto dir = std::filesystem::temp_directory_path() / ("maptr_plot_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  Table t = sample();
-  write_file((dir / "t.csv").string(), t.csv());
+  ResultTable t = sample();
+  t.write_csv((dir / "t.csv").string());
   if (std::system("gnuplot --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
   ASSERT_TRUE(draw_plot(dir.string(), "t", "test", PlotFrame{},
                         "set datafile columnheaders\n" +

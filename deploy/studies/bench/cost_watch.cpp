@@ -76,7 +76,7 @@ bool wait_for_tick(const std::string& trace, long long tick, const std::atomic<b
 }
 
 FleetCost watch_fleet_cost(const std::string& run_dir, const TickWindow& w, const std::atomic<bool>& done) {
-  const std::string trace = run_dir + "/trace.csv";
+  const std::string trace = records::trace_path(run_dir);
   if (!wait_for_tick(trace, w.start_tick, done)) return {};
   const auto fleet = records::read_fleet_file(run_dir);
   if (!fleet) return {};

@@ -3,13 +3,12 @@
 // processes: once W times the memory one process touches per round exceeds the last-level
 // cache, every round starts from memory another process evicted.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "deploy/report/gnuplot.hpp"
-#include "deploy/report/table.hpp"
 #include "deploy/studies/bench/bench_parts.hpp"
 #include "deploy/studies/bench/floor.hpp"
+#include "records/result_table.hpp"
 
 namespace maptr::deploy {
 
@@ -20,7 +19,7 @@ using json = nlohmann::json;
 constexpr int kAnswersBesideAgents = 3;
 constexpr long kRounds = 2000, kWarmup = 200;
 
-std::vector<report::Column> floor_columns() {
+std::vector<records::ResultColumn> floor_columns() {
   return {{"agents", "N", 0},
           {"workers", "workers W", 0},
           {"touch_kb", "KiB touched / worker / round", 0},
@@ -52,10 +51,9 @@ std::string floor_plot_body(const std::vector<int>& touch_kb) {
 
 int bench_floor(const BenchOptions& o) {
   std::filesystem::create_directories(o.out);
-  report::Table t;
+  records::ResultTable t;
   t.cols = floor_columns();
-  std::ofstream csv(o.out + "/floor.csv");
-  csv << t.csv_header() << std::flush;
+  records::ResultTableWriter csv(o.out + "/floor.csv", t.cols);
   for (int kb : o.touch_kb)  // a working set's rows together: its curves are unbroken
     for (int n : o.agents) {
       const int w = n + kAnswersBesideAgents;
@@ -70,11 +68,11 @@ int bench_floor(const BenchOptions& o) {
                         {"cpu_us_per_round", f.cpu_us_per_round},
                         {"cpu_us_per_worker_round", f.cpu_us_per_round / w},
                         {"cs_per_round", f.ctx_switches_per_round}};
-      csv << t.csv_row(row) << std::flush;
+      csv.append(row);
       t.rows.push_back(row);
       std::cerr << " round " << f.median_us << " µs, CPU " << f.cpu_us_per_round / w << " µs per worker\n";
     }
-  report::write_file(o.out + "/floor.md", t.md());
+  records::write_text_file(o.out + "/floor.md", t.md());
   report::draw_plot(o.out, "floor", "made by `maptr bench floor`", report::PlotFrame{"1400,600", ""},
                     floor_plot_body(o.touch_kb));
   std::cout << t.md() << "results: " << o.out << "/floor.csv, floor.md, floor.png\n";

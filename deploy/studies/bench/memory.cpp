@@ -35,7 +35,7 @@ bool wait_under_way(const std::string& run_dir, const std::atomic<bool>& done) {
   const auto t0 = std::chrono::steady_clock::now();
   while (!done.load()) {
     std::error_code ec;
-    const std::string trace = run_dir + "/trace.csv";
+    const std::string trace = records::trace_path(run_dir);
     if (fs::exists(trace, ec) && fs::file_size(trace, ec) > kTraceBytesUnderWay) return true;
     if (std::chrono::steady_clock::now() - t0 > kGiveUpAfter) return false;
     std::this_thread::sleep_for(kPoll);

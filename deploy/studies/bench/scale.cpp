@@ -5,12 +5,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "deploy/fleet/isolated_launch.hpp"
 #include "deploy/report/gnuplot.hpp"
-#include "deploy/report/table.hpp"
 #include "deploy/studies/bench/bench_parts.hpp"
 #include "deploy/studies/bench/cost_watch.hpp"
 #include "deploy/studies/bench/floor.hpp"
@@ -18,6 +16,7 @@
 #include "deploy/studies/bench/proc_stats.hpp"
 #include "deploy/studies/bench/scale_verdict.hpp"
 #include "records/junit.hpp"
+#include "records/result_table.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::deploy {
@@ -35,32 +34,32 @@ constexpr double kKiB = 1024.0;
 constexpr int kAnswersBesideAgents = 3;
 
 /// The columns of scale.csv (kB, µs) and of scale.md (MB, ms).
-std::vector<report::Column> columns() {
-  std::vector<report::Column> cols = {{"agents", "N", 0},
-                                      {"mode", "mode", -1},
-                                      {"hosts", "hosts", 0},
-                                      {"status", "status", -1, false, true},
-                                      {"status_text", "status", -1, true, false},
-                                      {"discovery_s", "discovery s", 2},
-                                      {"ticks_per_wall_s", "ticks / wall s", 1},
-                                      {"real_time_factor", "RTF (100 Hz)", 2},
-                                      {"cpu_s_per_sim_s", "CPU s / sim s", 2},
-                                      {"pss_agent_median_kB", "", 0, false, true},
-                                      {"pss_agent_median_MB", "PSS agent median MB", 1, true, false},
-                                      {"pss_agent_max_kB", "", 0, false, true},
-                                      {"pss_agent_max_MB", "PSS agent max MB", 1, true, false},
-                                      {"pss_total_kB", "", 0, false, true},
-                                      {"pss_total_MB", "PSS total MB", 0, true, false},
-                                      {"samples_per_tick", "DDS samples / tick", 0},
-                                      {"bridge_bytes_per_tick", "bridge bytes / tick", 0},
-                                      {"tick_median_us", "", 0, false, true},
-                                      {"tick_median_ms", "tick median ms", 2, true, false},
-                                      {"tick_p99_us", "", 0, false, true},
-                                      {"tick_p99_ms", "tick p99 ms", 2, true, false},
-                                      {"floor_median_us", "floor median µs", 0},
-                                      {"x_floor", "tick / floor", 1},
-                                      {"floor_cs_per_round", "floor cs / round", 1},
-                                      {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
+std::vector<records::ResultColumn> columns() {
+  std::vector<records::ResultColumn> cols = {{"agents", "N", 0},
+                                             {"mode", "mode", -1},
+                                             {"hosts", "hosts", 0},
+                                             {"status", "status", -1, false, true},
+                                             {"status_text", "status", -1, true, false},
+                                             {"discovery_s", "discovery s", 2},
+                                             {"ticks_per_wall_s", "ticks / wall s", 1},
+                                             {"real_time_factor", "RTF (100 Hz)", 2},
+                                             {"cpu_s_per_sim_s", "CPU s / sim s", 2},
+                                             {"pss_agent_median_kB", "", 0, false, true},
+                                             {"pss_agent_median_MB", "PSS agent median MB", 1, true, false},
+                                             {"pss_agent_max_kB", "", 0, false, true},
+                                             {"pss_agent_max_MB", "PSS agent max MB", 1, true, false},
+                                             {"pss_total_kB", "", 0, false, true},
+                                             {"pss_total_MB", "PSS total MB", 0, true, false},
+                                             {"samples_per_tick", "DDS samples / tick", 0},
+                                             {"bridge_bytes_per_tick", "bridge bytes / tick", 0},
+                                             {"tick_median_us", "", 0, false, true},
+                                             {"tick_median_ms", "tick median ms", 2, true, false},
+                                             {"tick_p99_us", "", 0, false, true},
+                                             {"tick_p99_ms", "tick p99 ms", 2, true, false},
+                                             {"floor_median_us", "floor median µs", 0},
+                                             {"x_floor", "tick / floor", 1},
+                                             {"floor_cs_per_round", "floor cs / round", 1},
+                                             {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
   for (const auto& c : fleet_cost_columns()) cols.push_back({c.key, c.head, c.prec});
   // last: earlier columns keep their places
   cols.push_back({"record", "run.mcap records", -1});
@@ -231,10 +230,9 @@ int replot(const BenchOptions& o) {
 int bench_scale(const BenchOptions& o) {
   if (o.replot) return replot(o);
   fs::create_directories(o.out);
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns();
-  std::ofstream csv(o.out + "/scale.csv");
-  csv << t.csv_header() << std::flush;
+  records::ResultTableWriter csv(o.out + "/scale.csv", t.cols);
   const ScaleThresholds limits{o.min_rtf, o.max_floor_ratio};
   std::vector<std::string> headlines;
   std::vector<records::JunitCase> cases;
@@ -247,7 +245,7 @@ int bench_scale(const BenchOptions& o) {
         std::cerr << "maptr: bench scale N=" << n << ", mode " << mode << ", on " << hosts << " host(s) ..."
                   << std::flush;
         const json row = measure(o, n, mode, hosts);
-        csv << t.csv_row(row) << std::flush;  // a later size that fails leaves the earlier rows
+        csv.append(row);  // a later size that fails leaves the earlier rows
         t.rows.push_back(row);
         std::cerr << " CPU steal " << row["steal_pct_fleet"].get<double>() << " %\n";
         const auto misses = scale_misses(row, limits);
@@ -260,9 +258,9 @@ int bench_scale(const BenchOptions& o) {
              "maptr.bench.scale", row.value("wall_s", 0.0), failure});
         missed += !misses.empty();
       }
-  report::write_file(o.out + "/scale.md", t.md());
+  records::write_text_file(o.out + "/scale.md", t.md());
   plot(o.out);
-  if (!o.junit.empty()) report::write_file(o.junit, records::junit_xml("maptr bench scale", cases));
+  if (!o.junit.empty()) records::write_text_file(o.junit, records::junit_xml("maptr bench scale", cases));
   for (const auto& h : headlines) std::cout << h << "\n";
   std::cout << "bench scale: " << cases.size() - missed << " of " << cases.size() << " sizes pass";
   if (o.min_rtf >= 0) std::cout << ", --min-rtf " << o.min_rtf;

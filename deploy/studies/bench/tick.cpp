@@ -4,10 +4,11 @@
 #include <sstream>
 
 #include "deploy/fleet/isolated_launch.hpp"
-#include "deploy/report/table.hpp"
 #include "deploy/studies/bench/bench_parts.hpp"
 #include "deploy/studies/bench/cost_watch.hpp"
 #include "deploy/studies/bench/floor.hpp"
+#include "records/result_table.hpp"
+#include "records/run_files.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::deploy {
@@ -17,7 +18,7 @@ namespace {
 constexpr double kTickSpeed = 10.0;
 
 std::string timing_md(const records::Summary& sum) {
-  report::Table t;
+  records::ResultTable t;
   t.cols = {{"part", "part", -1}, {"median", "median µs", 0}, {"p90", "p90 µs", 0}, {"p99", "p99 µs", 0}};
   const std::pair<const char*, const char*> parts[] = {
       {"publish", "plant publishes PlantTick k (write returns)"},
@@ -38,7 +39,7 @@ std::string timing_md(const records::Summary& sum) {
 /// Context switches and CPU per tick by process kind, over the measured window.
 std::string cost_md(const FleetCost& c) {
   if (!c.measured) return "Cost per process kind: not measured (the run ended before its window).\n";
-  report::Table t;
+  records::ResultTable t;
   for (const auto& col : fleet_cost_columns()) t.cols.push_back({col.key, col.head, col.prec});
   t.rows.push_back(fleet_cost_json(c));
   return "Cost per tick by process kind, from /proc over a window of " + std::to_string(c.ticks) +
@@ -78,8 +79,8 @@ int bench_tick(const BenchOptions& o) {
      << (floor.median_us > 0 ? tick_us / floor.median_us : 0.0) << " x floor.\n\n"
      << cost_md(cost);
   std::filesystem::create_directories(o.out);
-  report::write_file(o.out + "/tick.md", md.str());
-  report::write_file(o.out + "/tick.json", sum.tick_timing_json().dump(2) + "\n");
+  records::write_text_file(o.out + "/tick.md", md.str());
+  records::write_json_file(o.out + "/tick.json", sum.tick_timing_json());
   std::cout << md.str() << "results: " << o.out << "/tick.md, tick.json\n";
   return sum.status() == "ok" ? 0 : 1;
 }

@@ -8,8 +8,8 @@ namespace maptr::deploy {
 namespace {
 
 using json = nlohmann::json;
-using report::fixed;
-using report::num;
+using records::fixed;
+using records::num;
 
 struct Series {
   std::string key, label;
@@ -34,7 +34,7 @@ Conditions conditions(bool q) {
           120.0};
 }
 
-std::vector<report::Column> columns() {
+std::vector<records::ResultColumn> columns() {
   return {{"series", "payload", -1},
           {"agents", "N", 0},
           {"gross_kg", "gross kg", 1},
@@ -112,7 +112,7 @@ void plots(Experiment& e, const Conditions& c) {
 int exp_agents(Experiment& e) {
   const Conditions c = conditions(e.quick());
   e.set_total(static_cast<int>(c.ns.size() * c.series.size() * 2));
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns();
   for (const auto& se : c.series)
     for (int n : c.ns) {

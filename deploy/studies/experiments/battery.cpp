@@ -10,8 +10,8 @@ namespace maptr::deploy {
 namespace {
 
 using json = nlohmann::json;
-using report::fixed;
-using report::num;
+using records::fixed;
+using records::num;
 
 struct Conditions {
   double gross = 34.4, speed = 15.0;
@@ -34,7 +34,7 @@ Conditions conditions(bool q) {
 /// The speed falls more than this far below its reference for 5 s: the run ends.
 constexpr double kStopBelowSpeedPct = 5.0;
 
-std::vector<report::Column> columns() {
+std::vector<records::ResultColumn> columns() {
   return {{"mode", "mode", -1},
           {"lasted_s", "lasted s", 0},
           {"distance_km", "distance km", 2},
@@ -120,7 +120,7 @@ void plots(Experiment& e, const Conditions& c,
 int exp_battery(Experiment& e) {
   const Conditions c = conditions(e.quick());
   e.set_total(2);
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns();
   std::vector<std::pair<std::string, std::string>> files;
   std::filesystem::create_directories(e.dir() + "/series");

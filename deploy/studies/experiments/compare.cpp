@@ -14,7 +14,7 @@ namespace maptr::deploy {
 namespace {
 
 using json = nlohmann::json;
-using report::num;
+using records::num;
 
 /// One --set: the field and its values.
 struct Sweep {
@@ -47,7 +47,7 @@ std::string id_part(const std::string& field, const std::string& value) {
   return id;
 }
 
-std::vector<report::Column> columns() {
+std::vector<records::ResultColumn> columns() {
   return {{"variant", "variant", -1},
           {"status", "status", -1},
           {"energy_J", "energy J", 1},
@@ -149,7 +149,7 @@ int run_compare(const CompareOptions& c, const std::vector<CompareVariant>& vari
   e.set_total(static_cast<int>(variants.size()));
   std::fprintf(stderr, "maptr: compare %s: %zu variants, results in %s\n", c.scenario.c_str(),
                variants.size(), c.o.out.c_str());
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns();
   std::vector<std::pair<std::string, std::string>> files;
   double first_energy = kNaN;

@@ -9,9 +9,9 @@ namespace maptr::deploy {
 namespace {
 
 using json = nlohmann::json;
-using report::num;
+using records::num;
 
-std::vector<report::Column> columns(const std::string& xkey, const std::string& xhead) {
+std::vector<records::ResultColumn> columns(const std::string& xkey, const std::string& xhead) {
   return {{xkey, xhead, 1},
           {"energy_kJ", "energy kJ", 2},
           {"mileage", "mileage m/J", 4},
@@ -52,7 +52,7 @@ json row_of(const std::string& xkey, double x, const Run& r) {
 int ec_time_series(Experiment& e, const std::vector<SeriesVariant>& vars, const std::string& xkey,
                    const std::string& xhead, const std::string& intro, const std::string& what) {
   e.set_total(static_cast<int>(vars.size()));
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns(xkey, xhead);
   std::vector<std::pair<std::string, std::string>> files;
   std::filesystem::create_directories(e.dir() + "/series");

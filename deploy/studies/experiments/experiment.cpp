@@ -14,7 +14,7 @@ namespace maptr::deploy {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-using report::fixed;
+using records::fixed;
 
 namespace {
 /// The highest DDS domain id: a retry goes one below it instead of one above.
@@ -43,7 +43,7 @@ void Experiment::straight(config::Scenario& s, double speed, double duration) {
 bool Experiment::reusable(const Run& r, const config::Scenario& s) const {
   const auto old = records::Summary::read(records::summary_path(r.dir));
   return old.has_status() && old.status().rfind("aborted", 0) != 0 &&
-         file_text(r.dir + "/scenario.yaml") == config::to_yaml(s) && fs::exists(r.dir + "/trace.csv");
+         file_text(r.dir + "/scenario.yaml") == config::to_yaml(s) && fs::exists(records::trace_path(r.dir));
 }
 
 void Experiment::launch_with_retry(Run& r, const std::string& head) {
@@ -123,17 +123,17 @@ json Experiment::runs_json() const {
   return runs;
 }
 
-void Experiment::write(const report::Table& t, const std::string& md_intro, const std::string& md_after,
-                       json extra) {
+void Experiment::write(const records::ResultTable& t, const std::string& md_intro,
+                       const std::string& md_after, json extra) {
   fs::create_directories(o_.out);
-  report::write_file(o_.out + "/" + o_.name + ".csv", t.csv());
+  t.write_csv(o_.out + "/" + o_.name + ".csv");
   std::ostringstream md;
   md << "# " << o_.name << (o_.quick ? " (quick)" : "") << "\n\n"
      << "Command: `" << command() << "`\n\n"
      << md_intro << " Level-1 control and plant tick: " << fixed(tick_hz(), 0) << " Hz.\n\n"
      << t.md() << "\n"
      << md_after << (md_after.empty() ? "" : "\n\n") << runs_md();
-  report::write_file(o_.out + "/" + o_.name + ".md", md.str());
+  records::write_text_file(o_.out + "/" + o_.name + ".md", md.str());
   json s = {{"experiment", o_.name},
             {"quick", o_.quick},
             {"command", command()},
@@ -141,7 +141,7 @@ void Experiment::write(const report::Table& t, const std::string& md_intro, cons
             {"rows", t.rows}};
   for (auto& [k, v] : extra.items()) s[k] = v;
   s["runs"] = runs_json();
-  report::write_file(o_.out + "/summary.json", s.dump(2) + "\n");
+  records::write_json_file(records::summary_path(o_.out), s);
 }
 
 bool Experiment::plot(const std::string& stem, const std::string& body, const report::PlotFrame& frame) {

@@ -15,9 +15,9 @@
 
 #include "config/scenario.hpp"
 #include "deploy/report/gnuplot.hpp"
-#include "deploy/report/table.hpp"
 #include "deploy/studies/experiments/experiments.hpp"
 #include "deploy/studies/experiments/run.hpp"
+#include "records/result_table.hpp"
 
 namespace maptr::deploy {
 
@@ -42,7 +42,7 @@ class Experiment {
   Run run(const std::string& id, const std::string& label, config::Scenario s);
 
   /// Writes <name>.csv, <name>.md and summary.json.
-  void write(const report::Table& t, const std::string& md_intro, const std::string& md_after,
+  void write(const records::ResultTable& t, const std::string& md_intro, const std::string& md_after,
              nlohmann::json extra = nlohmann::json::object());
 
   /// Writes STEM.gp next to STEM.png and runs gnuplot in the output folder.

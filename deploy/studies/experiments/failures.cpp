@@ -10,8 +10,8 @@ namespace maptr::deploy {
 namespace {
 
 using json = nlohmann::json;
-using report::fixed;
-using report::num;
+using records::fixed;
+using records::num;
 
 constexpr int kAgents = 16, kPerSide = kAgents / 2;
 
@@ -42,7 +42,7 @@ config::Scenario scenario(const Experiment& e, const Conditions& c, const KillOr
   return s;
 }
 
-std::vector<report::Column> columns() {
+std::vector<records::ResultColumn> columns() {
   return {{"killed_per_side", "killed per side", 0},
           {"tolerance", "tolerance N_i - N_a,i", 0},
           {"killed", "killed", -1},
@@ -157,7 +157,7 @@ int exp_failures(Experiment& e) {
   KillOrder order;
   for (int side = 0; side < 2; ++side)
     for (int j = 0; j < kPerSide; ++j) order[side].push_back(j);
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns();
   std::vector<int> ks = {0};
   int tolerance = -1;

@@ -12,8 +12,8 @@ namespace maptr::deploy {
 namespace {
 
 using json = nlohmann::json;
-using report::fixed;
-using report::num;
+using records::fixed;
+using records::num;
 
 constexpr int kAgents = 16, kPerSide = kAgents / 2;
 
@@ -86,7 +86,7 @@ double stop_start(const config::Scenario& s) {
   return s.duration_s;
 }
 
-std::vector<report::Column> columns() {
+std::vector<records::ResultColumn> columns() {
   return {{"mass_kg", "gross kg", 1},
           {"agents", "faulty agents (side L)", 0},
           {"mode", "mode", -1},
@@ -227,7 +227,7 @@ int exp_faults(Experiment& e) {
   for (std::size_t mi = 0; mi < c.modes.size(); ++mi)
     total += std::string(c.modes[mi].mode) == "kill" ? 1 : 2;
   e.set_total(static_cast<int>(c.masses.size() * (1 + c.counts.size() * static_cast<std::size_t>(total))));
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns();
   for (const double mass : c.masses) {
     const Run twin =

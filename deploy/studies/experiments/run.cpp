@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <fstream>
 
-#include "deploy/report/table.hpp"
 #include "records/assignments.hpp"
+#include "records/result_table.hpp"
+#include "records/run_files.hpp"
 #include "records/trace.hpp"
 
 namespace maptr::deploy {
@@ -52,7 +53,7 @@ namespace {
 
 /// The trace of a run; empty (with a message when it exists but cannot be read) otherwise.
 std::vector<TraceRow> trace_of(const Run& r) {
-  const std::string path = r.dir + "/trace.csv";
+  const std::string path = records::trace_path(r.dir);
   if (!std::ifstream(path).good()) return {};
   try {
     return records::read_trace(path);
@@ -137,8 +138,18 @@ long long bin_of(double t, double bin_s) {
   return static_cast<long long>(std::floor(t / bin_s + kEdge));
 }
 
-/// One line of the series: the means of rows [first, end) (the last row for the running sums).
-std::string series_line(const std::vector<TraceRow>& t, std::size_t first, std::size_t end, double rad) {
+/// The series' columns: the means over a bin (the last row's value for the running sums).
+std::vector<records::ResultColumn> series_columns() {
+  return {{"t_s", "t (s)", 3},         {"v_x_mps", "v (m/s)", 5},
+          {"ref_mps", "ref (m/s)", 5}, {"eff_agent", "eff", 5},
+          {"n_active", "active", 3},   {"battery_V", "battery (V)", 4},
+          {"V_applied_V", "V (V)", 4}, {"discharge_mAh", "mAh", 3},
+          {"energy_kJ", "E (kJ)", 4},  {"distance_m", "distance (m)", 2}};
+}
+
+/// One row of the series: the means of rows [first, end) (the last row for the running sums);
+/// the applied voltage is absent when no bin row had agents driving on both sides.
+json series_row(const std::vector<TraceRow>& t, std::size_t first, std::size_t end, double rad) {
   double st = 0, sv = 0, sref = 0, seff = 0, sn = 0, sb = 0, sva = 0;
   int kv = 0;
   for (std::size_t i = first; i < end; ++i) {
@@ -156,27 +167,33 @@ std::string series_line(const std::vector<TraceRow>& t, std::size_t first, std::
   }
   const double k = static_cast<double>(end - first);
   const TraceRow& last = t[end - 1];
-  char row[512];
-  std::snprintf(row, sizeof(row), "%.3f,%.5f,%.5f,%.5f,%.3f,%.4f,%s,%.3f,%.4f,%.2f\n", st / k, sv / k,
-                sref / k, seff / k, sn / k, sb / k, kv ? report::fixed(sva / kv, 4).c_str() : "",
-                0.5 * (last.discharge_L_mAh + last.discharge_R_mAh), last.energy_J / 1000.0, last.distance_m);
-  return row;
+  return {{"t_s", st / k},
+          {"v_x_mps", sv / k},
+          {"ref_mps", sref / k},
+          {"eff_agent", seff / k},
+          {"n_active", sn / k},
+          {"battery_V", sb / k},
+          {"V_applied_V", kv ? json(sva / kv) : json(nullptr)},
+          {"discharge_mAh", 0.5 * (last.discharge_L_mAh + last.discharge_R_mAh)},
+          {"energy_kJ", last.energy_J / 1000.0},
+          {"distance_m", last.distance_m}};
 }
 
 }  // namespace
 
 void write_series(const Run& r, const std::string& path, double bin_s) {
   const auto t = trace_of(r);
-  std::ofstream o(path);
-  o << "t_s,v_x_mps,ref_mps,eff_agent,n_active,battery_V,V_applied_V,discharge_mAh,energy_kJ,distance_m\n";
+  records::ResultTable series;
+  series.cols = series_columns();
   std::size_t i = 0;
   while (i < t.size()) {
     const long long bin = bin_of(t[i].t_s, bin_s);
     std::size_t end = i;
     while (end < t.size() && bin_of(t[end].t_s, bin_s) == bin) ++end;
-    o << series_line(t, i, end, r.s.robot.wheel_radius_m);
+    series.rows.push_back(series_row(t, i, end, r.s.robot.wheel_radius_m));
     i = end;
   }
+  series.write_csv(path);
 }
 
 std::vector<std::vector<Interval>> driving_intervals(const std::string& path, int per_side, double t_end) {
@@ -194,7 +211,7 @@ std::vector<std::vector<Interval>> driving_intervals(const std::string& path, in
 }
 
 DrivingOrder driving_first(const Run& r, double at, int per_side) {
-  const auto iv = driving_intervals(r.dir + "/assignments.csv", per_side, r.sim_s());
+  const auto iv = driving_intervals(records::assignments_path(r.dir), per_side, r.sim_s());
   DrivingOrder order;
   for (int side = 0; side < 2; ++side) {
     std::vector<int> on, off;

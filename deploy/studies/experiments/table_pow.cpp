@@ -10,8 +10,8 @@ namespace maptr::deploy {
 namespace {
 
 using json = nlohmann::json;
-using report::fixed;
-using report::num;
+using records::fixed;
+using records::num;
 
 struct Conditions {
   std::vector<double> masses;
@@ -23,7 +23,7 @@ Conditions conditions(bool quick) {
   return {{13.2, 18.2, 23.2, 28.2, 33.2, 38.2}, 20.0, 1800.0};
 }
 
-std::vector<report::Column> columns() {
+std::vector<records::ResultColumn> columns() {
   return {{"gross_kg", "gross kg", 1},
           {"E_NO_kJ", "E_NO kJ", 2},
           {"E_NO_paper_kJ", "E_NO paper", 2},
@@ -140,7 +140,7 @@ void plots(Experiment& e, const Conditions& c) {
 int exp_table_pow(Experiment& e) {
   const Conditions c = conditions(e.quick());
   e.set_total(static_cast<int>(c.masses.size()) * 2);
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns();
   std::vector<std::string> not_held;
   for (double m : c.masses) {

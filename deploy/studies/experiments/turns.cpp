@@ -7,13 +7,13 @@
 // --quick: fewer speeds in (a); in (b) the loop's straights are shortened (5, 4 and 5 m).
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "deploy/studies/experiments/experiment_list.hpp"
 #include "model/battery.hpp"
 #include "model/motor.hpp"
 #include "model/reach.hpp"
+#include "records/run_files.hpp"
 #include "records/trace.hpp"
 
 namespace maptr::deploy {
@@ -21,8 +21,8 @@ namespace maptr::deploy {
 namespace {
 
 using json = nlohmann::json;
-using report::fixed;
-using report::num;
+using records::fixed;
+using records::num;
 
 const std::vector<double> kMasses = {13.2, 30.0, 38.2};
 const std::vector<std::string> kDrivers = {"unidirectional", "bidirectional"};
@@ -49,8 +49,9 @@ json radius_json(double rmin) {
   return rmin;
 }
 
-report::Table reach_table(const config::Scenario& base, const std::vector<double>& speeds, double battery_V) {
-  report::Table t;
+records::ResultTable reach_table(const config::Scenario& base, const std::vector<double>& speeds,
+                                 double battery_V) {
+  records::ResultTable t;
   t.cols = {{"speed_mps", "speed m/s", 2}};
   for (const auto& d : kDrivers)
     for (double m : kMasses)
@@ -97,8 +98,8 @@ void reach_plot(Experiment& e, const model::RobotParams& r) {
 json reach(Experiment& e) {
   const config::Scenario base = loop_scenario(e);
   const double battery_V = model::battery_voltage(base.robot.battery, base.initial_discharge_mAh);
-  const report::Table t = reach_table(base, reach_speeds(e.quick()), battery_V);
-  report::write_file(e.dir() + "/turns-reach.csv", t.csv());
+  const records::ResultTable t = reach_table(base, reach_speeds(e.quick()), battery_V);
+  t.write_csv(e.dir() + "/turns-reach.csv");
   std::ostringstream md;
   md << "# turns: reach" << (e.quick() ? " (quick)" : "") << "\n\nCommand: `" << e.command() << "`\n\n"
      << "The tightest radius the robot holds in a steady turn at each speed (`model::tightest_radius`, as "
@@ -110,7 +111,7 @@ json reach(Experiment& e) {
         "'–': not even a straight line is held at that speed; 0: every radius down to "
      << model::kMinReachRadius << " m.\n\n"
      << t.md();
-  report::write_file(e.dir() + "/turns-reach.md", md.str());
+  records::write_text_file(e.dir() + "/turns-reach.md", md.str());
   reach_plot(e, base.robot);
   return {{"battery_V", battery_V}, {"rows", t.rows}};
 }
@@ -146,7 +147,7 @@ json loop_row(const std::string& mode, const Run& r) {
           {"trace_sha256", r.summary.data().value(records::summary_key::kTraceSha, "")}};
 }
 
-std::vector<report::Column> loop_columns() {
+std::vector<records::ResultColumn> loop_columns() {
   return {{"mode", "mode", -1},
           {"energy_kJ", "energy kJ", 3},
           {"mileage", "mileage m/J", 4},
@@ -165,16 +166,22 @@ std::vector<report::Column> loop_columns() {
 bool write_difference(const RunPair& p, const std::string& path) {
   std::vector<records::TraceRow> no, ec;
   try {
-    no = records::read_trace(p.no.dir + "/trace.csv");
-    ec = records::read_trace(p.ec.dir + "/trace.csv");
+    no = records::read_trace(records::trace_path(p.no.dir));
+    ec = records::read_trace(records::trace_path(p.ec.dir));
   } catch (const std::exception&) {
     return false;
   }
-  std::ofstream o(path);
-  o << "t_s,dE_J,active_NO,active_EC\n";
+  records::ResultTable d;
+  d.cols = {{"t_s", "t (s)", 3},
+            {"dE_J", "E_EC - E_NO (J)", 3},
+            {"active_NO", "active NO", 0},
+            {"active_EC", "active EC", 0}};
   for (std::size_t i = 0; i < no.size() && i < ec.size(); ++i)
-    o << no[i].t_s << "," << ec[i].energy_J - no[i].energy_J << "," << no[i].n_active_L + no[i].n_active_R
-      << "," << ec[i].n_active_L + ec[i].n_active_R << "\n";
+    d.rows.push_back({{"t_s", no[i].t_s},
+                      {"dE_J", ec[i].energy_J - no[i].energy_J},
+                      {"active_NO", no[i].n_active_L + no[i].n_active_R},
+                      {"active_EC", ec[i].n_active_L + ec[i].n_active_R}});
+  d.write_csv(path);
   return true;
 }
 
@@ -234,7 +241,7 @@ int exp_turns(Experiment& e) {
   if (e.quick()) shorten(s);
   std::filesystem::create_directories(e.dir() + "/series");
   const RunPair p = run_no_ec(e, s, "loop", "loop");
-  report::Table t;
+  records::ResultTable t;
   t.cols = loop_columns();
   t.rows = {loop_row("NO", p.no), loop_row("EC", p.ec)};
   std::ostringstream after;

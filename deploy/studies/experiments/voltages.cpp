@@ -32,7 +32,7 @@ int exp_voltages(Experiment& e) {
            "discharge curve otherwise unchanged (paper: Fig. 'Level-2: different input voltages').";
   return ec_time_series(
       e, vars, "supply_V", "supply V", intro.str(),
-      report::fixed(gross, 1) + " kg at " + report::fixed(speed, 0) + " m/s, several supply voltages");
+      records::fixed(gross, 1) + " kg at " + records::fixed(speed, 0) + " m/s, several supply voltages");
 }
 
 }  // namespace maptr::deploy

@@ -1,19 +1,19 @@
 // wear: Level-3 task allocation: which agents drive in every T_ON step, idle time, wear.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "deploy/studies/experiments/experiment_list.hpp"
 #include "records/ledger_file.hpp"
+#include "records/run_files.hpp"
 
 namespace maptr::deploy {
 
 namespace {
 
 using json = nlohmann::json;
-using report::fixed;
-using report::num;
+using records::fixed;
+using records::num;
 
 struct Conditions {
   std::vector<int> ns;
@@ -28,7 +28,7 @@ Conditions conditions(bool q) {
 /// After the speed first comes within the band: the first Level-2 decision is in, s.
 constexpr double kCruiseAfterReachS = 2.0;
 
-std::vector<report::Column> columns() {
+std::vector<records::ResultColumn> columns() {
   return {{"agents", "N", 0},
           {"active_mean", "active (mean, 2nd half)", 2},
           {"active_end", "active (end, L+R)", 0},
@@ -91,17 +91,24 @@ void add_wear(json& row, const Run& r) {
 void transitions(Experiment& e, int n, double t_on, double T, const std::vector<std::vector<Interval>>& iv) {
   const int per_side = n / 2;
   const int steps = static_cast<int>(std::ceil(T / t_on - 1e-9));
-  std::ofstream tr(e.dir() + "/transitions-N" + std::to_string(n) + ".csv");
-  tr << "step,t_start_s,agent,name,driving_fraction\n";
+  records::ResultTable tr;
+  tr.cols = {{"step", "step", 0},
+             {"t_start_s", "start (s)", 1},
+             {"agent", "agent", 0},
+             {"name", "name", -1},
+             {"driving_fraction", "driving", 4}};
   for (int a = 0; a < n; ++a)  // gnuplot's "with image" wants x (the step) to vary fastest
     for (int k = 0; k < steps; ++k) {
       const double s0 = k * t_on, s1 = std::min(T, (k + 1) * t_on);
       double on = 0;
       for (const auto& x : iv[a]) on += std::max(0.0, std::min(x.t1, s1) - std::max(x.t0, s0));
-      tr << k << "," << fixed(s0, 1) << "," << a << "," << config::agent_name(a / per_side, a % per_side)
-         << "," << fixed(s1 > s0 ? on / (s1 - s0) : 0.0, 4) << "\n";
+      tr.rows.push_back({{"step", k},
+                         {"t_start_s", s0},
+                         {"agent", a},
+                         {"name", config::agent_name(a / per_side, a % per_side)},
+                         {"driving_fraction", s1 > s0 ? on / (s1 - s0) : 0.0}});
     }
-  tr.close();
+  tr.write_csv(e.dir() + "/transitions-N" + std::to_string(n) + ".csv");
   std::ostringstream yt;
   for (int a = 0; a < n; ++a)
     yt << (a ? ", " : "") << "\"" << config::agent_name(a / per_side, a % per_side) << "\" " << a;
@@ -144,7 +151,7 @@ json row_of(Experiment& e, const Conditions& c, int n, const Run& r) {
   row["active_end"] = r.active_end();
   row["active_end_L"] = r.active_side("L");
   row["active_end_R"] = r.active_side("R");
-  const auto iv = driving_intervals(r.dir + "/assignments.csv", n / 2, r.sim_s());
+  const auto iv = driving_intervals(records::assignments_path(r.dir), n / 2, r.sim_s());
   transitions(e, n, c.t_on, r.sim_s(), iv);
   add_drove_in_cruise(row, r, n / 2, iv);
   return row;
@@ -168,7 +175,7 @@ std::string intro(const Conditions& c) {
 int exp_wear(Experiment& e) {
   const Conditions c = conditions(e.quick());
   e.set_total(static_cast<int>(c.ns.size()));
-  report::Table t;
+  records::ResultTable t;
   t.cols = columns();
   for (int n : c.ns) {
     config::Scenario s = e.base();

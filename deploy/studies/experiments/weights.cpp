@@ -27,7 +27,7 @@ int exp_weights(Experiment& e) {
          "number of "
          "active agents against time for each gross mass (paper: Fig. 'Level-2: different payload weights').";
   return ec_time_series(e, vars, "gross_kg", "gross kg", intro.str(),
-                        "gross masses at " + report::fixed(speed, 0) + " m/s");
+                        "gross masses at " + records::fixed(speed, 0) + " m/s");
 }
 
 }  // namespace maptr::deploy

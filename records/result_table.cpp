@@ -1,4 +1,4 @@
-#include "deploy/report/table.hpp"
+#include "records/result_table.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 
 #include "records/csv.hpp"
 
-namespace maptr::deploy::report {
+namespace maptr::records {
 
 using nlohmann::json;
 
@@ -51,14 +51,14 @@ std::string csv_field(const json& v, int prec) {
   return v.dump();
 }
 
-std::string Table::csv_header() const {
+std::string ResultTable::csv_header() const {
   std::string o;
   for (const auto& c : cols)
     if (c.csv) o += (o.empty() ? "" : ",") + c.key;
   return o + "\n";
 }
 
-std::string Table::csv_row(const json& r) const {
+std::string ResultTable::csv_row(const json& r) const {
   std::string o;
   bool first = true;
   for (const auto& c : cols) {
@@ -69,13 +69,13 @@ std::string Table::csv_row(const json& r) const {
   return o + "\n";
 }
 
-std::string Table::csv() const {
+std::string ResultTable::csv() const {
   std::string o = csv_header();
   for (const auto& r : rows) o += csv_row(r);
   return o;
 }
 
-std::string Table::md() const {
+std::string ResultTable::md() const {
   std::ostringstream o;
   o << "|";
   for (const auto& c : cols)
@@ -97,8 +97,8 @@ std::string Table::md() const {
   return o.str();
 }
 
-std::vector<json> read_table_csv(const std::string& path, const std::vector<Column>& cols) {
-  const auto f = records::CsvFile::read(path, path.substr(path.find_last_of('/') + 1));
+std::vector<json> read_result_table(const std::string& path, const std::vector<ResultColumn>& cols) {
+  const auto f = CsvFile::read(path, path.substr(path.find_last_of('/') + 1));
   std::vector<json> rows(f.rows(), json::object());
   for (const auto& c : cols) {
     if (!c.csv) continue;
@@ -111,6 +111,15 @@ std::vector<json> read_table_csv(const std::string& path, const std::vector<Colu
   return rows;
 }
 
-void write_file(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+void ResultTable::write_csv(const std::string& path) const { write_text_file(path, csv()); }
 
-}  // namespace maptr::deploy::report
+ResultTableWriter::ResultTableWriter(const std::string& path, std::vector<ResultColumn> cols) : out_(path) {
+  layout_.cols = std::move(cols);
+  out_ << layout_.csv_header() << std::flush;
+}
+
+void ResultTableWriter::append(const json& row) { out_ << layout_.csv_row(row) << std::flush; }
+
+void write_text_file(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+}  // namespace maptr::records
