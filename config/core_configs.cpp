@@ -31,9 +31,9 @@ control::CentralConfig central_config(const Scenario& s) {
   return c;
 }
 
-sim::PlantCoreConfig plant_core_config(const Scenario& sc, double speed_lost_hold_s,
-                                       double reached_band_pct) {
-  sim::PlantCoreConfig pc;
+plant_core::PlantCoreConfig plant_core_config(const Scenario& sc, double speed_lost_hold_s,
+                                              double reached_band_pct) {
+  plant_core::PlantCoreConfig pc;
   pc.robot = sc.robot;
   pc.dt_s = sc.dt();
   pc.trace_every = sc.trace_every;

@@ -5,7 +5,7 @@
 #include "control/central_core.hpp"
 #include "control/group_core.hpp"
 #include "control/level1/agent_core.hpp"
-#include "sim/plant_core.hpp"
+#include "plant_core/plant_core.hpp"
 
 namespace maptr::config {
 
@@ -14,6 +14,7 @@ control::GroupConfig group_config(const Scenario& s);
 control::CentralConfig central_config(const Scenario& s);
 /// The plant core's configuration; `speed_lost_hold_s` and `reached_band_pct` are the plant
 /// node's own settings (plant/plant_config.hpp), not the scenario's.
-sim::PlantCoreConfig plant_core_config(const Scenario& s, double speed_lost_hold_s, double reached_band_pct);
+plant_core::PlantCoreConfig plant_core_config(const Scenario& s, double speed_lost_hold_s,
+                                              double reached_band_pct);
 
 }  // namespace maptr::config

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "config/settings.hpp"
-#include "sim/speed_band.hpp"
+#include "plant_core/speed_band.hpp"
 
 namespace maptr::plant {
 
@@ -24,7 +24,7 @@ struct PlantNodeConfig {
   /// Final speed error above which a run that reached its reference is degraded, %.
   double degraded_band_pct = 5.0;
   /// Tracking error under which the reference counts as reached the first time, %.
-  double reached_band_pct = sim::kSpeedBandPct;
+  double reached_band_pct = plant_core::kSpeedBandPct;
   /// How long the speed must stay below its reference (stop_below_speed_pct) to end the run, s.
   double speed_lost_hold_s = 5.0;
   /// Wall time the plant waits for the launcher at a fault gate before going on, s.

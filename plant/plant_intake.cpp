@@ -138,7 +138,7 @@ bool PlantLoop::collect() {
     return sent_.sides()[side].active()[index] == 0 && !comm::idle_answer_due(k, side, index, per_side_);
   });
   for (auto& side : cmd_.applied)
-    for (auto& a : side) a = sim::AgentApplied{};
+    for (auto& a : side) a = plant_core::AgentApplied{};
   times_.start = Clock::now();
   times_.first_reply = Clock::time_point{};
   barrier_.start(now_s());

@@ -68,7 +68,7 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
   w_ready_ = p_.writer(p_.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched);
   w_gate_ = p_.writer(p_.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched);
   for (int s = 0; s < 2; ++s) {
-    cmd_.applied[s].assign(per_side_, sim::AgentApplied{});
+    cmd_.applied[s].assign(per_side_, plant_core::AgentApplied{});
     agent_rejects_[s].assign(per_side_, 0);
     once_reply_[s].resize(static_cast<std::size_t>(per_side_));
     cmd_.mask[s].assign(per_side_, 0);

@@ -24,7 +24,7 @@
 #include "plant/tick_records.hpp"
 #include "plant/validation.hpp"
 #include "plant/wear_watch.hpp"
-#include "sim/plant_core.hpp"
+#include "plant_core/plant_core.hpp"
 
 namespace maptr::plant {
 
@@ -47,7 +47,7 @@ inline float us(Clock::time_point a, Clock::time_point b) {
 
 /// groups' assignments and central's references (carried in the next Tick).
 struct Commands {
-  std::vector<sim::AgentApplied> applied[2];
+  std::vector<plant_core::AgentApplied> applied[2];
   std::vector<uint8_t> mask[2];
   long long group_stamp[2] = {-1, -1};
   long long central_stamp = -1;
@@ -130,7 +130,7 @@ class PlantLoop {
   uint64_t seen_ = 0;
   uint64_t consumed_ = 0;  ///< lock-step samples taken from the counted inboxes so far
 
-  sim::PlantCore core_;
+  plant_core::PlantCore core_;
   std::unique_ptr<RunFiles> files_;
   Membership membership_;
   std::size_t logged_records_ = 0;

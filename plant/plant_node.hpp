@@ -2,7 +2,7 @@
 // DDS node of the plant: the lock-step barrier. Publishes Tick k, waits for every live agent's
 // AgentReply k, each live group's GroupStatus k and central's CentralCommand k, integrates,
 // and publishes Tick k+1. The protocol's parts are objects of their own (membership, barrier,
-// sample validation, fault gate, report; the physics in sim::PlantCore): this node only wires
+// sample validation, fault gate, report; the physics in plant_core::PlantCore): this node only wires
 // the DDS inboxes and writers to them.
 #include <spdlog/logger.h>
 

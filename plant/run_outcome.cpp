@@ -73,7 +73,7 @@ std::string end_reason(bool speed_lost, double stop_below_speed_pct, double hold
          hold.str() + " s at t=" + std::to_string(t_s) + " s";
 }
 
-std::vector<std::string> fault_problems(const sim::FaultBook& book, long long exposed_ticks_needed) {
+std::vector<std::string> fault_problems(const plant_core::FaultBook& book, long long exposed_ticks_needed) {
   std::vector<std::string> out;
   char line[200];
   for (const auto& r : book.records()) {
@@ -91,7 +91,7 @@ std::vector<std::string> fault_problems(const sim::FaultBook& book, long long ex
   return out;
 }
 
-records::AgentFaults agent_faults(const sim::FaultBook& book) {
+records::AgentFaults agent_faults(const plant_core::FaultBook& book) {
   records::AgentFaults out;
   for (const auto& r : book.records())
     out.faults.push_back(
@@ -105,7 +105,7 @@ records::AgentFaults agent_faults(const sim::FaultBook& book) {
   return out;
 }
 
-records::PlantResults plant_results(const sim::PlantCore& core, const ReportInputs& in,
+records::PlantResults plant_results(const plant_core::PlantCore& core, const ReportInputs& in,
                                     const std::vector<MembershipRecord>& records) {
   const auto& x = core.state();
   records::PlantResults j;

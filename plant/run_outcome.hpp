@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "plant/membership.hpp"
+#include "plant_core/plant_core.hpp"
 #include "records/plant_results.hpp"
-#include "sim/plant_core.hpp"
 
 namespace maptr::plant {
 
@@ -55,7 +55,7 @@ struct RunEnd {
 /// A fault counts as undetected only once it acted on the drive for more than
 /// `exposed_ticks_needed` ticks (twice the persistence time: a fault on an agent that never
 /// drove while it was in force cannot be seen, and did no harm).
-std::vector<std::string> fault_problems(const sim::FaultBook& book, long long exposed_ticks_needed);
+std::vector<std::string> fault_problems(const plant_core::FaultBook& book, long long exposed_ticks_needed);
 
 /// "ok", "aborted: stop signal", or "degraded: ..." when a side has no live agent, a controller
 /// was dead or paused at the end, an agent's fault went undetected or a healthy one was
@@ -95,7 +95,7 @@ struct ReportInputs {
 };
 
 /// The content of plant.json (records/plant_results.hpp).
-records::PlantResults plant_results(const sim::PlantCore& core, const ReportInputs& in,
+records::PlantResults plant_results(const plant_core::PlantCore& core, const ReportInputs& in,
                                     const std::vector<MembershipRecord>& records);
 
 }  // namespace maptr::plant

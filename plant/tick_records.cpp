@@ -10,7 +10,7 @@ namespace maptr::plant {
 namespace {
 
 /// The trace record of the core's row k (counts become whole doubles; energy is both sides').
-records::TraceRow to_record(const sim::TraceRow& r) {
+records::TraceRow to_record(const plant_core::TraceRow& r) {
   const model::State& x = r.x;
   records::TraceRow o;
   o.tick = static_cast<double>(r.tick);
@@ -48,7 +48,7 @@ records::TraceRow to_record(const sim::TraceRow& r) {
 }
 
 /// The assignment record of a change: side 'L'/'R', the driving flags as a '0'/'1' mask.
-records::AssignmentRecord to_record(const sim::AssignmentChange& a) {
+records::AssignmentRecord to_record(const plant_core::AssignmentChange& a) {
   records::AssignmentRecord o;
   o.t_s = a.t_s;
   o.side = a.side == 0 ? 'L' : 'R';
@@ -65,7 +65,7 @@ class CsvRunFiles : public RunFiles {
     trace_.emplace(trace_path);
   }
 
-  void write(const sim::TickRecord& rec) override {
+  void write(const plant_core::TickRecord& rec) override {
     if (rec.row) trace_->write(to_record(*rec.row));
     if (assignments_)
       for (const auto& a : rec.assignments) assignments_->write(to_record(a));

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "sim/plant_core.hpp"
+#include "plant_core/plant_core.hpp"
 
 namespace maptr::plant {
 
@@ -13,7 +13,7 @@ class RunFiles {
  public:
   virtual ~RunFiles() = default;
   /// Writes everything one tick produced (flushed, so an aborted run keeps what it produced).
-  virtual void write(const sim::TickRecord& rec) = 0;
+  virtual void write(const plant_core::TickRecord& rec) = 0;
 };
 
 /// The trace (records/trace.hpp) at trace_path and, when assignments_path is not empty, the

@@ -18,7 +18,7 @@ import sys
 # to the same or a lower layer.
 LAYERS = {
     "model": 0,
-    "control": 1, "sim": 1,
+    "control": 1, "plant_core": 1,
     "config": 2, "records": 2, "idl": 2,
     "comm/posix": 3.0, "comm/dds": 3.1, "comm/lockstep": 3.2,
     "agent": 4, "group": 4, "central": 4, "plant": 4,

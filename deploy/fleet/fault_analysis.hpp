@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "plant_core/speed_band.hpp"
 #include "records/plant_results.hpp"
-#include "sim/speed_band.hpp"
 
 namespace maptr::deploy {
 
@@ -18,6 +18,6 @@ namespace maptr::deploy {
 /// max_speed_error_pct 0.
 void analyse_faults(nlohmann::json& failures, const std::vector<records::MembershipEvent>& events,
                     const std::string& trace_csv, double wheel_radius_m,
-                    double recovery_band_pct = sim::kSpeedBandPct);
+                    double recovery_band_pct = plant_core::kSpeedBandPct);
 
 }  // namespace maptr::deploy

@@ -1,7 +1,7 @@
 // Agent faults without a fleet: each motor fault's current and torque against its closed form
 // (model/motor_fault.hpp, model/dynamics.hpp), the detector's residuals and diagnosis on samples
 // the motor model makes for healthy and faulty drives (control/diagnosis.hpp), isolation in
-// GroupCore, the plant's fault book (sim/fault_book.hpp) and an agent's software faults
+// GroupCore, the plant's fault book (plant_core/fault_book.hpp) and an agent's software faults
 // (agent/misbehaviour.hpp).
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include "model/dynamics.hpp"
 #include "model/motor.hpp"
 #include "model/motor_fault.hpp"
-#include "sim/fault_book.hpp"
+#include "plant_core/fault_book.hpp"
 
 namespace {
 
@@ -265,7 +265,8 @@ TEST(GroupCore, WithoutMeasurementsNothingIsFlagged) {
 const char* const kNames[] = {"", "open", "short", "torque", "resistance", "stuck", "sensor", "erratic", "liar"};
 
 TEST(FaultBook, AppliesFaultsAtTheirTickAndRecordsDetectionIsolationAndFalseDetections) {
-  sim::FaultBook book(4, {{200, 0, 3, false, "torque", 0.5}, {400, 0, 3, true, "", 0.0}, {100, 1, 0, false, "liar", 0}});
+  plant_core::FaultBook book(
+      4, {{200, 0, 3, false, "torque", 0.5}, {400, 0, 3, true, "", 0.0}, {100, 1, 0, false, "liar", 0}});
   book.apply(99, 0.99);
   EXPECT_TRUE(book.records().empty());
   book.apply(100, 1.0);

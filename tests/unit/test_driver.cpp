@@ -7,7 +7,7 @@
 
 #include "model/dynamics.hpp"
 #include "model/motor.hpp"
-#include "sim/integrator.hpp"
+#include "plant_core/integrator.hpp"
 
 namespace {
 
@@ -95,7 +95,7 @@ TEST(Driver, EnergyBalanceWhileBrakingAndRegenerating) {
     mm::RobotParams p;
     p.gross_mass_kg = 30.0;
     p.driver = h_bridge(regen, 1.0);
-    maptr::sim::CvodeIntegrator cv(p);
+    maptr::plant_core::CvodeIntegrator cv(p);
     mm::Inputs u(8);
     mm::State x{};
     const double dt = 0.01;

@@ -1,8 +1,6 @@
 // Plant dynamics (model/dynamics.hpp): forces, steady states, energy ledger, coast-down.
-// Long runs use the CVODE adapter (sim/integrator.hpp) in 10 ms ticks, like the plant.
+// Long runs use the CVODE adapter (plant_core/integrator.hpp) in 10 ms ticks, like the plant.
 #include <gtest/gtest.h>
-
-#include "tests/unit/test_support.hpp"
 
 #include <cmath>
 #include <functional>
@@ -12,7 +10,8 @@
 
 #include "model/dynamics.hpp"
 #include "model/motor.hpp"
-#include "sim/integrator.hpp"
+#include "plant_core/integrator.hpp"
+#include "tests/unit/test_support.hpp"
 
 namespace {
 
@@ -20,7 +19,7 @@ using maptr::test::record;
 using maptr::test::bisect;
 
 namespace mm = maptr::model;
-using maptr::sim::CvodeIntegrator;
+using maptr::plant_core::CvodeIntegrator;
 
 constexpr double kG = 9.81;
 

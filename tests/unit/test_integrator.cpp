@@ -1,7 +1,5 @@
-// CVODE adapter (sim/integrator.hpp) against a fine fixed-step RK4 reference.
+// CVODE adapter (plant_core/integrator.hpp) against a fine fixed-step RK4 reference.
 #include <gtest/gtest.h>
-
-#include "tests/unit/test_support.hpp"
 
 #include <cmath>
 #include <iomanip>
@@ -11,15 +9,16 @@
 #include <string>
 
 #include "model/dynamics.hpp"
-#include "sim/integrator.hpp"
+#include "plant_core/integrator.hpp"
+#include "tests/unit/test_support.hpp"
 
 namespace {
 
 using maptr::test::record;
 
 namespace mm = maptr::model;
-using maptr::sim::CvodeIntegrator;
-using maptr::sim::rk4_step;
+using maptr::plant_core::CvodeIntegrator;
+using maptr::plant_core::rk4_step;
 
 // Inputs of tick k: 0.3 s straight acceleration (all agents, equal voltages), then a hard left
 // turn (2 left agents at a low voltage, every right agent at a rising voltage), with one right
@@ -38,7 +37,7 @@ void inputs_for_tick(int k, mm::Inputs& u) {
 // Runs 1 s of 10 ms ticks with CVODE (options o) and with RK4 (1000 substeps per tick, h = 10 us;
 // RK4 with 100 substeps agrees with it to 1e-14, so it is the exact solution here) and checks
 // v_x, w and the energy drawn at every tick to `tol` relative (w relative to max(|w|, 0.01 rad/s)).
-void compare_with_rk4(const maptr::sim::IntegratorOptions& o, double tol, const std::string& tag) {
+void compare_with_rk4(const maptr::plant_core::IntegratorOptions& o, double tol, const std::string& tag) {
   mm::RobotParams p;
   p.gross_mass_kg = 18.2;
   CvodeIntegrator cv(p, o);
@@ -73,7 +72,7 @@ void compare_with_rk4(const maptr::sim::IntegratorOptions& o, double tol, const 
 
 TEST(Integrator, CvodeMatchesFineRk4TightTolerances) {
   // rtol 1e-10, absolute 1e-12 (x 1e2, 1e3 on the ledgers): within 1e-6 relative (measured ~1e-9).
-  maptr::sim::IntegratorOptions o;
+  maptr::plant_core::IntegratorOptions o;
   o.rtol = 1e-10;
   o.atol_scale = 1e-12;
   compare_with_rk4(o, 1e-6, "cvode_tight_vs_rk4");

@@ -1,8 +1,6 @@
 // Skid-steer kinematics (model/kinematics.hpp) and turning in place through the dynamics.
 #include <gtest/gtest.h>
 
-#include "tests/unit/test_support.hpp"
-
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -10,7 +8,8 @@
 
 #include "model/dynamics.hpp"
 #include "model/kinematics.hpp"
-#include "sim/integrator.hpp"
+#include "plant_core/integrator.hpp"
+#include "tests/unit/test_support.hpp"
 
 namespace {
 
@@ -87,7 +86,7 @@ TEST(Kinematics, PureRotationHasOppositeWheelSpeeds) {
 TEST(Kinematics, SpinInPlaceAgainstClosedForm) {
   mm::RobotParams p;  // N = 16, m = 13.2 kg, Type I
   p.k_s = 1e7;        // atan(k_s w x_j) within 1e-5 of pi/2 while |w x_j| > 0.03 m/s
-  maptr::sim::CvodeIntegrator cv(p);
+  maptr::plant_core::CvodeIntegrator cv(p);
   const double w0 = 2.0;
   mm::State x{};
   x[mm::kW] = w0;

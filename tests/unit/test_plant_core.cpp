@@ -1,4 +1,4 @@
-// Plant core (sim/plant_core.hpp): integration of held inputs tick by tick, the ledgers, and
+// Plant core (plant_core/plant_core.hpp): integration of held inputs tick by tick, the ledgers, and
 // what each tick reports for the trace and the assignments.
 #include <gtest/gtest.h>
 
@@ -8,15 +8,15 @@
 #include "model/battery.hpp"
 #include "model/dynamics.hpp"
 #include "model/motor.hpp"
-#include "sim/plant_core.hpp"
+#include "plant_core/plant_core.hpp"
 #include "tests/unit/test_support.hpp"
 
 namespace {
 
 using namespace maptr;
-using sim::AgentApplied;
-using sim::PlantCore;
-using sim::PlantCoreConfig;
+using plant_core::AgentApplied;
+using plant_core::PlantCore;
+using plant_core::PlantCoreConfig;
 
 PlantCoreConfig config(double dt_s) {
   PlantCoreConfig c;

@@ -96,8 +96,8 @@ TEST(PlantReport, TimingQuantiles) {
 }
 
 TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
-  sim::PlantCoreConfig c;
-  sim::PlantCore core(c);
+  plant_core::PlantCoreConfig c;
+  plant_core::PlantCore core(c);
   plant::ReportInputs in;
   in.status = "ok";
   in.end_reason = "duration reached";

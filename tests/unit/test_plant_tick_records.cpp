@@ -27,8 +27,8 @@ TEST(PlantRunFiles, TraceAndAssignmentRows) {
   const std::string trace = (dir / "trace.csv").string(), assign = (dir / "assignments.csv").string();
   {
     auto files = plant::open_csv_run_files(trace, assign);
-    sim::TickRecord rec;
-    sim::TraceRow row;
+    plant_core::TickRecord rec;
+    plant_core::TraceRow row;
     row.tick = 3;
     row.t_s = 0.03;
     row.x[model::kVx] = 0.25;
@@ -57,7 +57,7 @@ TEST(PlantRunFiles, NoAssignmentsFileWhenNotAsked) {
   std::filesystem::create_directories(dir);
   {
     auto files = plant::open_csv_run_files((dir / "trace.csv").string(), "");
-    sim::TickRecord rec;
+    plant_core::TickRecord rec;
     rec.assignments.push_back({0.0, 0, {1}});
     files->write(rec);
   }

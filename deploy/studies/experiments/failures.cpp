@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "deploy/studies/experiments/experiment_list.hpp"
-#include "sim/speed_band.hpp"
+#include "plant_core/speed_band.hpp"
 
 namespace maptr::deploy {
 
@@ -114,7 +114,7 @@ std::string intro(const Conditions& c) {
        "0, where it shows what Level 2 alone does to the speed); 'recovered' counts the kills after which "
        "the speed "
        "came back within "
-    << sim::kSpeedBandPct << "% of the reference.";
+    << plant_core::kSpeedBandPct << "% of the reference.";
   return o.str();
 }
 

@@ -46,7 +46,7 @@ json Run::level2() const {
 bool Run::speed_held() const {
   const TraceFigures& t = trace;
   return std::isfinite(t.v_end_mps) && std::isfinite(t.ref_end_mps) && t.ref_end_mps > 0 &&
-         t.v_end_mps >= (1.0 - sim::kSpeedBandPct / 100.0) * t.ref_end_mps;
+         t.v_end_mps >= (1.0 - plant_core::kSpeedBandPct / 100.0) * t.ref_end_mps;
 }
 
 namespace {
@@ -99,7 +99,7 @@ void derive(Run& r) {
   const double rad = r.s.robot.wheel_radius_m;
   for (const auto& x : t) {
     const double ref = x.ref_speed_mps(rad);
-    if (ref > 0 && std::fabs(x.v_x_mps - ref) < sim::kSpeedBandPct / 100.0 * ref) {
+    if (ref > 0 && std::fabs(x.v_x_mps - ref) < plant_core::kSpeedBandPct / 100.0 * ref) {
       r.trace.t_reach_s = x.t_s;
       break;
     }

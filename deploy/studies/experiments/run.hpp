@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "config/scenario.hpp"
+#include "plant_core/speed_band.hpp"
 #include "records/summary.hpp"
-#include "sim/speed_band.hpp"
 
 namespace maptr::deploy {
 
@@ -17,7 +17,7 @@ inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Figures of a run's trace.csv (NaN when the trace does not give them).
 struct TraceFigures {
-  double t_reach_s = kNaN;      ///< first time within sim::kSpeedBandPct of the reference speed
+  double t_reach_s = kNaN;      ///< first time within plant_core::kSpeedBandPct of the reference speed
   double v_end_mps = kNaN;      ///< mean speed over the last 10% of the run
   double ref_end_mps = kNaN;    ///< reference at the end
   double eff_cruise = kNaN;     ///< mean per-agent efficiency (mean of eff_L, eff_R), second half
@@ -44,7 +44,7 @@ struct Run {
   /// Level-2 figures over both sides: decisions, oracle checks and disagreements, and the mean
   /// of the sides' median Ipopt solve times.
   nlohmann::json level2() const;
-  /// The speed stayed within sim::kSpeedBandPct of the reference at the end of the run.
+  /// The speed stayed within plant_core::kSpeedBandPct of the reference at the end of the run.
   bool speed_held() const;
 };
 

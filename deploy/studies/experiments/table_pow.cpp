@@ -3,7 +3,7 @@
 
 #include "deploy/studies/experiments/experiment_list.hpp"
 #include "deploy/studies/experiments/paper.hpp"
-#include "sim/speed_band.hpp"
+#include "plant_core/speed_band.hpp"
 
 namespace maptr::deploy {
 
@@ -99,10 +99,10 @@ std::string intro(const Conditions& c, bool quick) {
 std::string after(const std::vector<std::string>& not_held) {
   std::ostringstream o;
   if (not_held.empty()) {
-    o << "Every run held its reference speed (within " << sim::kSpeedBandPct << "% at the end).";
+    o << "Every run held its reference speed (within " << plant_core::kSpeedBandPct << "% at the end).";
     return o.str();
   }
-  o << "**Speed not held** (mean speed over the last 10% of the run more than " << sim::kSpeedBandPct
+  o << "**Speed not held** (mean speed over the last 10% of the run more than " << plant_core::kSpeedBandPct
     << "% below the reference): ";
   for (std::size_t i = 0; i < not_held.size(); ++i) o << (i ? ", " : "") << not_held[i];
   o << ". These rows compare runs that did not cover the paper's distance; their mileage is the fair "

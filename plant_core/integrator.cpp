@@ -1,4 +1,4 @@
-#include "sim/integrator.hpp"
+#include "plant_core/integrator.hpp"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace maptr::sim {
+namespace maptr::plant_core {
 
 struct CvodeIntegrator::Impl {
   SUNContext ctx = nullptr;
@@ -106,4 +106,4 @@ void rk4_step(const model::RobotParams& p, const model::Inputs& u, model::State&
   }
 }
 
-}  // namespace maptr::sim
+}  // namespace maptr::plant_core

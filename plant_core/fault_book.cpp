@@ -1,8 +1,8 @@
-#include "sim/fault_book.hpp"
+#include "plant_core/fault_book.hpp"
 
 #include <algorithm>
 
-namespace maptr::sim {
+namespace maptr::plant_core {
 
 namespace {
 std::string agent(int side, int index) { return (side == 0 ? "L" : "R") + std::to_string(index); }
@@ -25,7 +25,8 @@ void FaultBook::apply(long long k, double t_s) {
     if (e.side < 0 || e.side > 1 || e.index < 0 || e.index >= per_side_) continue;
     const auto j = static_cast<std::size_t>(e.index);
     int& open = open_[e.side][j];
-    if (open >= 0) records_[static_cast<std::size_t>(open)].cleared_s = t_s;  // a new fault or a clear ends it
+    if (open >= 0)
+      records_[static_cast<std::size_t>(open)].cleared_s = t_s;  // a new fault or a clear ends it
     open = -1;
     motor_[e.side][j] = model::MotorFault{};
     if (e.clear) continue;
@@ -92,4 +93,4 @@ void FaultBook::on_flags(int side, const std::vector<uint8_t>& flags, double t_s
   }
 }
 
-}  // namespace maptr::sim
+}  // namespace maptr::plant_core

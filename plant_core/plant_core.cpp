@@ -1,4 +1,4 @@
-#include "sim/plant_core.hpp"
+#include "plant_core/plant_core.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +6,14 @@
 #include "model/battery.hpp"
 #include "model/kinematics.hpp"
 
-namespace maptr::sim {
+namespace maptr::plant_core {
 
 PlantCore::PlantCore(const PlantCoreConfig& c)
-    : c_(c), integ_(c.robot), u_(c.robot.per_side()), path_(c.trajectory), book_(c.robot.per_side(), c.agent_faults, c.fault_grace_s) {
+    : c_(c),
+      integ_(c.robot),
+      u_(c.robot.per_side()),
+      path_(c.trajectory),
+      book_(c.robot.per_side(), c.agent_faults, c.fault_grace_s) {
   x_[model::kChargeL] = x_[model::kChargeR] = c.initial_discharge_mAh;
   for (int side = 0; side < 2; ++side) {
     active_time_[side].assign(c.robot.per_side(), 0.0);
@@ -178,4 +182,4 @@ void PlantCore::integrate() {
   ++tick_;
 }
 
-}  // namespace maptr::sim
+}  // namespace maptr::plant_core

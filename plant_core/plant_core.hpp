@@ -11,11 +11,11 @@
 #include "control/path.hpp"
 #include "model/motor_fault.hpp"
 #include "model/params.hpp"
-#include "sim/fault_book.hpp"
-#include "sim/integrator.hpp"
-#include "sim/speed_band.hpp"
+#include "plant_core/fault_book.hpp"
+#include "plant_core/integrator.hpp"
+#include "plant_core/speed_band.hpp"
 
-namespace maptr::sim {
+namespace maptr::plant_core {
 
 /// What one agent applied over [t_k, t_k+1] (from its reply).
 struct AgentApplied {
@@ -170,7 +170,7 @@ class PlantCore {
   bool reached_ = false;
   control::Path path_;
   control::TrackingStats tracking_;
-  control::PathRef path_ref_;  ///< the reference at the tick held
+  control::PathRef path_ref_;    ///< the reference at the tick held
   control::Projection path_at_;  ///< the robot against its path at the tick held
   FaultBook book_;
   std::vector<model::Winding> winding_[2];  ///< each motor's winding over the tick held
@@ -178,4 +178,4 @@ class PlantCore {
   void measure();
 };
 
-}  // namespace maptr::sim
+}  // namespace maptr::plant_core

@@ -6,7 +6,7 @@
 
 #include "model/dynamics.hpp"
 
-namespace maptr::sim {
+namespace maptr::plant_core {
 
 struct IntegratorOptions {
   double rtol = 1e-8;
@@ -39,4 +39,4 @@ class CvodeIntegrator {
 /// Classic fixed-step RK4 with the same inputs held (reference for tests and benches).
 void rk4_step(const model::RobotParams& p, const model::Inputs& u, model::State& x, double dt, int substeps);
 
-}  // namespace maptr::sim
+}  // namespace maptr::plant_core

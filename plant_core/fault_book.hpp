@@ -11,14 +11,15 @@
 
 #include "model/motor_fault.hpp"
 
-namespace maptr::sim {
+namespace maptr::plant_core {
 
 /// A fault or clear of one agent, at tick `tick`.
 struct AgentFaultEvent {
   long long tick = 0;
   int side = 0, index = 0;
   bool clear = false;
-  std::string mode;  ///< fault: open, short, torque, resistance, stuck (the motor); sensor, erratic, liar (the agent)
+  std::string
+      mode;  ///< fault: open, short, torque, resistance, stuck (the motor); sensor, erratic, liar (the agent)
   double value = 0.0;
 };
 
@@ -42,7 +43,7 @@ struct AgentFaultRecord {
 struct DiagnosisEvent {
   double t_s = 0.0;
   std::string target;
-  std::string diagnosed;  ///< "" : let back
+  std::string diagnosed;         ///< "" : let back
   bool false_detection = false;  ///< flagged while no fault was in force on it
 };
 
@@ -83,4 +84,4 @@ class FaultBook {
   int false_ = 0;
 };
 
-}  // namespace maptr::sim
+}  // namespace maptr::plant_core
