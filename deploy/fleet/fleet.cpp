@@ -75,7 +75,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   rec_.chaos_seed = o.chaos_seed;
   choose_transport();
   make_children();
-  if (on_hosts()) place_children();
+  if (on_hosts()) hosts_->place(kids_);
   if (!ds_.empty()) {
     for (auto& ds : ds_) ds->start_or_throw(env_, ids_);
     if (!on_hosts()) dds_.discovery_server = ds_.front()->address();  // the port it listens on
@@ -354,8 +354,12 @@ void Fleet::end() {
               "with security, eProsima/Fast-DDS#6502); the results are written and the launcher ends without them",
               cfg_.participant_delete_s);
   for (auto& ds : ds_) ds->stop(cfg_.discovery_term_s);  // the discovery servers go last
-  if (on_hosts()) record_hosts();
-  net_.reset();  // the namespaces, veths and bridge
+  if (on_hosts()) {
+    std::vector<std::string> servers;
+    for (const auto& ds : ds_) servers.push_back(ds->address());
+    rec_.hosts = hosts_->record(kids_, servers);
+    hosts_.reset();  // the namespaces, veths and bridge
+  }
   clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_id_), ds_.empty() ? 0 : ds_.front()->port(), log_);
 }
 

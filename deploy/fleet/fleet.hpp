@@ -19,7 +19,7 @@
 #include "deploy/fleet/control_fifo.hpp"
 #include "deploy/fleet/discovery.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
-#include "deploy/fleet/hosts.hpp"
+#include "deploy/fleet/host_placement.hpp"
 #include "deploy/fleet/launcher.hpp"
 #include "deploy/fleet/plant_clock.hpp"
 #include "deploy/fleet/ready_check.hpp"
@@ -110,11 +110,8 @@ class Fleet {
   Child* find(const std::string& name);
   // A fleet on several hosts (fleet_hosts.cpp).
   void setup_hosts();
-  void place_children();
   std::vector<std::string> apply_host_fault(const config::FaultSpec& f, double at_s);
-  void move_off_lost_host(Child& c);
-  void record_hosts();
-  bool on_hosts() const { return !hosts_.empty(); }
+  bool on_hosts() const { return hosts_ != nullptr; }
   double since(Clock::time_point t0) const;
 
   const LaunchOptions& o_;
@@ -127,8 +124,7 @@ class Fleet {
   Environment env_;
   ParticipantIds ids_;
   std::vector<std::unique_ptr<DiscoveryServer>> ds_;  ///< one, one per host, or none (a secure domain)
-  std::unique_ptr<NamespaceNet> net_;                 ///< namespace hosts on this machine
-  std::vector<Host> hosts_;                           ///< empty: every process on this machine
+  std::unique_ptr<HostPlacement> hosts_;              ///< none: every process on this machine
   comm::Signal signal_;
   comm::Inbox<msg::NodeReady> ready_{signal_};
   comm::Inbox<msg::PlantTick> ticks_{signal_, comm::Wake::kNever};  // polled: no wake-up per tick

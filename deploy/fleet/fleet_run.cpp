@@ -112,7 +112,7 @@ void Fleet::apply_fault(const config::FaultSpec& f, double at_s, const std::stri
       log_.warn("fault: killed {} (pid {}) at t={:.2f} s", who, pid, at_s);
       break;
     case FaultAction::kRestart:
-      if (on_hosts()) move_off_lost_host(*c);
+      if (on_hosts()) hosts_->move_off_lost(*c);
       spawn_child(*c);
       c->awaiting_ready = true;
       log_.warn("fault: restarted {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);

@@ -1,0 +1,120 @@
+#include "deploy/fleet/host_placement.hpp"
+
+#include <unistd.h>
+
+#include "comm/posix/environment.hpp"
+#include "deploy/fleet/discovery.hpp"
+
+namespace maptr::deploy::fleet {
+
+HostPlacement::HostPlacement(const config::HostsConfig& hc, int domain, spdlog::logger& log)
+    : hc_(hc), domain_(domain), log_(log) {
+  if (hc.machines.empty()) {
+    if (const int stale = sweep_stale_networks(); stale > 0)
+      log_.info("removed {} network namespaces left by earlier runs", stale);
+    net_ = std::make_unique<NamespaceNet>(hc.count, static_cast<int>(getpid()));
+    hosts_ = net_->hosts();
+    launcher_address_ = net_->bridge_address();
+    return;
+  }
+  for (int i = 0; i < hc.count; ++i) {
+    const auto& m = hc.machines[static_cast<std::size_t>(i)];
+    Host h;
+    h.name = config::host_name(i);
+    h.address = m.address;
+    h.prefix = split_command(m.command);
+    hosts_.push_back(h);
+  }
+  launcher_address_ = hc.launcher_address;
+}
+
+HostPlacement::~HostPlacement() = default;
+
+std::string HostPlacement::discovery_servers() const {
+  std::string servers;
+  for (const auto& h : hosts_)
+    servers += (servers.empty() ? "" : ",") + h.address + ":" + std::to_string(host_discovery_port(domain_));
+  return servers;
+}
+
+Child HostPlacement::host_template(int h) const {
+  Child c;
+  c.host = h;
+  c.prefix = host(h).prefix;
+  c.host_env = {{comm::kEnvInterface, host(h).address}, {comm::kEnvDiscoveryOwn, std::to_string(h)}};
+  return c;
+}
+
+namespace {
+void put_on(Child& c, const Child& t) {
+  c.host = t.host;
+  c.prefix = t.prefix;
+  c.host_env = t.host_env;
+}
+}  // namespace
+
+void HostPlacement::place(std::vector<Child>& kids) const {
+  std::vector<std::string> names;
+  for (const auto& c : kids) names.push_back(c.name);
+  const std::vector<int> where = place_processes(names, count(), hc_.placement);
+  for (std::size_t i = 0; i < kids.size(); ++i) put_on(kids[i], host_template(where[i]));
+}
+
+bool HostPlacement::move_off_lost(Child& c) const {
+  if (c.host < 0 || !host(c.host).lost) return false;
+  for (int k = 1; k < count(); ++k) {
+    const int h = (c.host + k) % count();
+    if (host(h).lost || host(h).partitioned) continue;
+    log_.info("{}: its host {} is lost; it starts on {}", c.name, config::host_name(c.host), host(h).name);
+    put_on(c, host_template(h));
+    return true;
+  }
+  return false;
+}
+
+void HostPlacement::lose(int h) {
+  Host& host = hosts_.at(static_cast<std::size_t>(h));
+  if (net_ && !net_->set_link(h, false)) log_.error("fault: host {}: its link could not be cut", host.name);
+  host.lost = host.partitioned = true;
+}
+
+bool HostPlacement::cut_off(int h) {
+  if (!net_ || !net_->set_link(h, false)) return false;
+  hosts_.at(static_cast<std::size_t>(h)).partitioned = true;
+  return true;
+}
+
+bool HostPlacement::heal(int h) {
+  Host& host = hosts_.at(static_cast<std::size_t>(h));
+  if (net_ && !net_->set_link(h, true))
+    log_.error("fault: host {}: its link could not be restored", host.name);
+  const bool was_lost = host.lost;
+  host.partitioned = host.lost = false;
+  return was_lost;
+}
+
+nlohmann::json HostPlacement::record(const std::vector<Child>& kids,
+                                     const std::vector<std::string>& servers) const {
+  nlohmann::json out = nlohmann::json::array();
+  for (int i = 0; i < count(); ++i) {
+    nlohmann::json procs = nlohmann::json::array();
+    for (const auto& c : kids)
+      if (c.host == i) procs.push_back(c.name);
+    nlohmann::json h = {{"name", host(i).name},
+                        {"address", host(i).address},
+                        {"kind", net_ ? "namespace" : "machine"},
+                        {"processes", procs},
+                        {"discovery_server", servers.at(static_cast<std::size_t>(i))},
+                        {"bytes_sent", nullptr},
+                        {"bytes_received", nullptr}};
+    if (net_) {
+      const LinkBytes b = net_->bytes(i);
+      h["bytes_sent"] = b.sent;
+      h["bytes_received"] = b.received;
+    }
+    out.push_back(h);
+  }
+  return out;
+}
+
+}  // namespace maptr::deploy::fleet

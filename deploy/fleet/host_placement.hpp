@@ -1,0 +1,68 @@
+#pragma once
+// Where a fleet's processes run when it runs on several hosts: the hosts (network namespaces on
+// this machine, or the machines of the scenario's hosts block), the state of each (lost, cut
+// off), their links, and the host of each process. The fleet asks it where to start a process
+// and tells it of host faults; the processes themselves (killing, announcing) stay the fleet's.
+#include <spdlog/logger.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "config/scenario.hpp"
+#include "deploy/fleet/children.hpp"
+#include "deploy/fleet/hosts.hpp"
+
+namespace maptr::deploy::fleet {
+
+class HostPlacement {
+ public:
+  /// The hosts of `hc`: namespace hosts made now (after removing those of runs that no longer
+  /// live), or the machines it names. `domain` gives the discovery servers' port. Throws
+  /// std::runtime_error when the namespaces cannot be made.
+  HostPlacement(const config::HostsConfig& hc, int domain, spdlog::logger& log);
+  ~HostPlacement();  ///< removes the namespaces, veths and bridge
+  HostPlacement(const HostPlacement&) = delete;
+  HostPlacement& operator=(const HostPlacement&) = delete;
+
+  int count() const { return static_cast<int>(hosts_.size()); }
+  const Host& host(int h) const { return hosts_.at(static_cast<std::size_t>(h)); }
+  /// Namespace hosts on this machine (their links are the launcher's to cut).
+  bool namespaces() const { return net_ != nullptr; }
+  /// The address the launcher's participant uses: the bridge's, or the scenario's launcher_address.
+  const std::string& launcher_address() const { return launcher_address_; }
+  /// Every host's discovery server, comma-separated (each server knows the others).
+  std::string discovery_servers() const;
+
+  /// The settings a process on host `h` gets from it: its host, command prefix, UDP interface
+  /// and discovery server (its host's own; comm::DdsOptions::own_server says why).
+  Child host_template(int h) const;
+  /// Puts each child on its host, by the scenario's placement.
+  void place(std::vector<Child>& kids) const;
+  /// A child whose host is lost moves to the next host that is neither lost nor cut off (false:
+  /// it stays, as no host is left or its own is not lost).
+  bool move_off_lost(Child& c) const;
+
+  /// kill-host: the host's link is cut and it counts as lost and cut off.
+  void lose(int h);
+  /// partition: cuts the host's link; false when the bridge did not take the cut.
+  bool cut_off(int h);
+  /// heal: links the host again; returns whether it had been lost (its discovery server then
+  /// starts again).
+  bool heal(int h);
+
+  /// The hosts' part of the summary: name, address, kind, processes, discovery server and the
+  /// bytes on each namespace host's link (`servers`: each host's server locator).
+  nlohmann::json record(const std::vector<Child>& kids, const std::vector<std::string>& servers) const;
+
+ private:
+  const config::HostsConfig& hc_;
+  int domain_;
+  spdlog::logger& log_;
+  std::unique_ptr<NamespaceNet> net_;
+  std::vector<Host> hosts_;
+  std::string launcher_address_;
+};
+
+}  // namespace maptr::deploy::fleet
