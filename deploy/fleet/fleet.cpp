@@ -345,7 +345,7 @@ void Fleet::end() {
   wait_all(kids_, cfg_.end_kill_s, reap_expected);
   if (zygote_) log_.info("the zygote forked {} agents ({} requests failed)", zygote_->forked(), zygote_->failed());
   zygote_.reset();
-  stop_recorder();
+  if (recorder_) recorder_->stop(rec_, log_);
   registration_.reset();
   fifo_.reset();
   participant_.reset();
@@ -360,7 +360,8 @@ void Fleet::end() {
     rec_.hosts = hosts_->record(kids_, servers);
     hosts_.reset();  // the namespaces, veths and bridge
   }
-  clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_id_), ds_.empty() ? 0 : ds_.front()->port(), log_);
+  clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_ ? recorder_->participant_id() : -1),
+                      ds_.empty() ? 0 : ds_.front()->port(), log_);
 }
 
 nlohmann::json Fleet::summary() {

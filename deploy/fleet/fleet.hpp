@@ -19,6 +19,7 @@
 #include "deploy/fleet/control_fifo.hpp"
 #include "deploy/fleet/discovery.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
+#include "deploy/fleet/fleet_recorder.hpp"
 #include "deploy/fleet/host_placement.hpp"
 #include "deploy/fleet/launcher.hpp"
 #include "deploy/fleet/plant_clock.hpp"
@@ -29,7 +30,6 @@
 #include "deploy/fleet/waves.hpp"
 #include "deploy/fleet/zygote_client.hpp"
 #include "idl/maptrPubSubTypes.h"
-#include "recorder/recorder.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -69,7 +69,6 @@ class Fleet {
   /// Starts again every agent whose answer writer run.mcap's recorder has not matched, and waits
   /// (up to the rematch interval) until they are ready again; false when there was none.
   bool rematch_unrecorded();
-  void stop_recorder();
   void make_secure_domain();
   void rematch_unready();
   /// A process that ended during discovery is started again (fleet_ready.cpp), up to
@@ -130,8 +129,7 @@ class Fleet {
   comm::Inbox<msg::PlantTick> ticks_{signal_, comm::Wake::kNever};  // polled: no wake-up per tick
   comm::Inbox<msg::FaultGate> gates_{signal_};
   std::unique_ptr<comm::Participant> participant_;
-  std::unique_ptr<recorder::Recorder> recorder_;
-  int recorder_id_ = -1;
+  std::unique_ptr<FleetRecorder> recorder_;  ///< run.mcap (records nothing when the scenario says none)
   eprosima::fastdds::dds::DataWriter* w_member_ = nullptr;
   eprosima::fastdds::dds::DataWriter* w_control_ = nullptr;
   std::vector<Child> kids_;

@@ -7,10 +7,6 @@ namespace maptr::deploy {
 
 namespace {
 
-using json = nlohmann::json;
-using records::fixed;
-using records::num;
-
 struct Series {
   std::string key, label;
   double per_agent_kg;  ///< > 0: gross = per_agent_kg * N

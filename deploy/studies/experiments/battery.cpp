@@ -9,10 +9,6 @@ namespace maptr::deploy {
 
 namespace {
 
-using json = nlohmann::json;
-using records::fixed;
-using records::num;
-
 struct Conditions {
   double gross = 34.4, speed = 15.0;
   double initial_mAh, duration;

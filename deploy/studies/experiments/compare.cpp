@@ -13,9 +13,6 @@ namespace maptr::deploy {
 
 namespace {
 
-using json = nlohmann::json;
-using records::num;
-
 /// One --set: the field and its values.
 struct Sweep {
   std::string option, field;

@@ -8,9 +8,6 @@ namespace maptr::deploy {
 
 namespace {
 
-using json = nlohmann::json;
-using records::num;
-
 std::vector<records::ResultColumn> columns(const std::string& xkey, const std::string& xhead) {
   return {{xkey, xhead, 1},
           {"energy_kJ", "energy kJ", 2},

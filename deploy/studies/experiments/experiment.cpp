@@ -13,8 +13,6 @@
 namespace maptr::deploy {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
-using records::fixed;
 
 namespace {
 /// The highest DDS domain id: a retry goes one below it instead of one above.

@@ -21,6 +21,11 @@
 
 namespace maptr::deploy {
 
+// The studies' cells (records/result_table.hpp): a number at its decimals, a finite number or null.
+using json = nlohmann::json;
+using records::fixed;
+using records::num;
+
 class Experiment {
  public:
   explicit Experiment(const ExperimentOptions& o) : o_(o) {}

@@ -11,10 +11,6 @@ namespace maptr::deploy {
 
 namespace {
 
-using json = nlohmann::json;
-using records::fixed;
-using records::num;
-
 constexpr int kAgents = 16, kPerSide = kAgents / 2;
 
 struct Mode {

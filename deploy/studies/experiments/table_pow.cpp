@@ -9,10 +9,6 @@ namespace maptr::deploy {
 
 namespace {
 
-using json = nlohmann::json;
-using records::fixed;
-using records::num;
-
 struct Conditions {
   std::vector<double> masses;
   double speed, duration;

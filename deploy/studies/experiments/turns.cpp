@@ -20,10 +20,6 @@ namespace maptr::deploy {
 
 namespace {
 
-using json = nlohmann::json;
-using records::fixed;
-using records::num;
-
 const std::vector<double> kMasses = {13.2, 30.0, 38.2};
 const std::vector<std::string> kDrivers = {"unidirectional", "bidirectional"};
 

@@ -11,10 +11,6 @@ namespace maptr::deploy {
 
 namespace {
 
-using json = nlohmann::json;
-using records::fixed;
-using records::num;
-
 struct Conditions {
   std::vector<int> ns;
   double t_on, duration, speed = 10.0, gross = 13.2;
