@@ -85,7 +85,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
   }
   // On several hosts the launcher (on the bridge) registers with the plant's host's server.
   if (on_hosts()) dds_.own_server = kids_.front().host;
-  join_domain();
+  domain_ = std::make_unique<LauncherParticipant>(dds_);
   start_recorder();
   t_launch_ = Clock::now();
 }
@@ -120,20 +120,9 @@ void Fleet::choose_transport() {
   if (on_hosts()) env_[comm::kEnvPlantLoss] = std::to_string(cfg_.host_plant_loss_s);
 }
 
-void Fleet::join_domain() {
-  participant_ = std::make_unique<comm::Participant>("launcher", dds_);
-  auto& p = *participant_;
-  p.reader(p.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &ready_);
-  p.reader(p.topic<msg::PlantTickPubSubType>(comm::topic::kTick), comm::Profile::kStream, &ticks_);
-  w_member_ =
-      p.writer(p.topic<msg::MembershipEventPubSubType>(comm::topic::kMembership), comm::Profile::kLatched);
-  w_control_ = p.writer(p.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched);
-  p.reader(p.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched, &gates_);
-}
-
 Fleet::~Fleet() {
   signal_all(kids_, SIGKILL);  // only after a launch that failed half-way: end() ended them
-  participant_.reset();
+  domain_.reset();
 }
 
 double Fleet::since(Clock::time_point t0) const {
@@ -282,12 +271,12 @@ void Fleet::start_processes() {
 }
 
 bool Fleet::discover() {
-  seen_ = signal_.count();
+  domain_->mark_seen();
   const double timeout =
       cfg_.discovery_timeout_s(sc_.robot.agents) * (secure() ? cfg_.secure_discovery_factor : 1.0);
   last_progress_ = Clock::now();
   while (ready_names_.size() < kids_.size()) {
-    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
+    domain_->wait_until(Clock::now() + cfg_.discovery_poll);
     const std::size_t before = ready_names_.size();
     take_ready();
     if (ready_names_.size() != before) last_progress_ = Clock::now();
@@ -325,10 +314,7 @@ void Fleet::start_run() {
   if (o_.progress)
     std::fprintf(stderr, "maptr: all %zu processes matched in %.2f s; starting\n", kids_.size(),
                  rec_.discovery_s);
-  msg::Control c;
-  c.command(msg::CONTROL_START);
-  c.seq(1);
-  w_control_->write(&c);
+  domain_->start();
 }
 
 void Fleet::end() {
@@ -348,7 +334,7 @@ void Fleet::end() {
   if (recorder_) recorder_->stop(rec_, log_);
   registration_.reset();
   fifo_.reset();
-  participant_.reset();
+  domain_->leave();
   if (comm::participant_left_open())
     log_.warn("Fast DDS did not delete the launcher's participants within {:.0f} s (a deadlock of Fast DDS 2.9 "
               "with security, eProsima/Fast-DDS#6502); the results are written and the launcher ends without them",
@@ -372,8 +358,7 @@ nlohmann::json Fleet::summary() {
   auto& kinds = rec_.launcher_by_kind;  // holds the malformed fault gates counted during the run
   for (const auto& [kind, n] : rec_.ready_rejected) kinds[kind] += n;
   kinds["forged"] += clock_.rejected();  // ticks and gates not from the plant (malformed ones too)
-  kinds["undecodable"] =
-      static_cast<long>(ready_.undecodable() + ticks_.undecodable() + gates_.undecodable());
+  kinds["undecodable"] = domain_->undecodable();
   rec_.launcher_rejected = 0;
   for (const auto& [kind, n] : kinds) rec_.launcher_rejected += n;
   const nlohmann::json s = build_summary(sc_, MAPTR_SOURCE_DIR, rec_, o_.run_dir, kids_);

@@ -22,6 +22,7 @@
 #include "deploy/fleet/fleet_recorder.hpp"
 #include "deploy/fleet/host_placement.hpp"
 #include "deploy/fleet/launcher.hpp"
+#include "deploy/fleet/launcher_participant.hpp"
 #include "deploy/fleet/plant_clock.hpp"
 #include "deploy/fleet/ready_check.hpp"
 #include "deploy/fleet/registry.hpp"
@@ -61,8 +62,6 @@ class Fleet {
   void make_discovery_servers();
   /// The transport the fleet's participants use and the environment that tells them.
   void choose_transport();
-  /// The launcher's participant: readiness, ticks and gates in; membership and control out.
-  void join_domain();
   void make_children();
   void start_recorder();
   void await_recorder();
@@ -124,14 +123,8 @@ class Fleet {
   ParticipantIds ids_;
   std::vector<std::unique_ptr<DiscoveryServer>> ds_;  ///< one, one per host, or none (a secure domain)
   std::unique_ptr<HostPlacement> hosts_;              ///< none: every process on this machine
-  comm::Signal signal_;
-  comm::Inbox<msg::NodeReady> ready_{signal_};
-  comm::Inbox<msg::PlantTick> ticks_{signal_, comm::Wake::kNever};  // polled: no wake-up per tick
-  comm::Inbox<msg::FaultGate> gates_{signal_};
-  std::unique_ptr<comm::Participant> participant_;
+  std::unique_ptr<LauncherParticipant> domain_;       ///< the launcher's participant
   std::unique_ptr<FleetRecorder> recorder_;  ///< run.mcap (records nothing when the scenario says none)
-  eprosima::fastdds::dds::DataWriter* w_member_ = nullptr;
-  eprosima::fastdds::dds::DataWriter* w_control_ = nullptr;
   std::vector<Child> kids_;
   std::unique_ptr<LaunchWaves> waves_;
   std::unique_ptr<Zygote> zygote_;  ///< forks the agents on this machine (none: exec)
@@ -143,7 +136,6 @@ class Fleet {
   long gates_seen_ = 0;
   std::set<std::string> ready_names_;
   Clock::time_point t_launch_, t_run_, last_wave_, last_print_, last_progress_;
-  uint64_t seen_ = 0, member_seq_ = 0, control_seq_ = 1;
   bool plant_done_ = false;
   bool discovered_ = false;  ///< discover() has returned: deaths are announced from now on
   bool ds_paused_ = false;   ///< the discovery server is stopped by a pause fault

@@ -55,7 +55,7 @@ ReadyClaim Fleet::claim_of(const msg::NodeReady& r, const eprosima::fastrtps::rt
 
 std::vector<Child*> Fleet::believed_ready() {
   std::vector<Child*> out;
-  for (auto& [r, h] : ready_.drain()) {
+  for (auto& [r, h] : domain_->take_ready()) {
     Child* c = nullptr;
     const ReadyVerdict v = judge_ready(claim_of(r, h, c));
     if (v == ReadyVerdict::kTaken) {

@@ -24,7 +24,7 @@ void Fleet::await_recorder() {
   // Done when the recorder has matched every writer and every process is (again) ready.
   while (!recorder_->matched_lockstep(std::min(deadline, Clock::now() + std::chrono::seconds(1))) ||
          ready_names_.size() < kids_.size()) {
-    if (ready_names_.size() < kids_.size()) seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
+    if (ready_names_.size() < kids_.size()) domain_->wait_until(Clock::now() + cfg_.discovery_poll);
     take_ready();
     reap(false);
     if (interrupted().load()) return;
@@ -56,7 +56,7 @@ bool Fleet::rematch_unrecorded() {
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(cfg_.rematch_s(sc_.robot.agents, secure())));
   while (ready_names_.size() < kids_.size() && Clock::now() < until && !interrupted().load()) {
-    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.discovery_poll);
+    domain_->wait_until(Clock::now() + cfg_.discovery_poll);
     take_ready();
     reap(false);
   }

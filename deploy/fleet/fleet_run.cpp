@@ -14,19 +14,6 @@ double wall_ms_now() {
       .count();
 }
 
-msg::NodeKind to_msg(ChildKind k) {
-  switch (k) {
-    case ChildKind::kAgent:
-      return msg::NODE_AGENT;
-    case ChildKind::kGroup:
-      return msg::NODE_GROUP;
-    case ChildKind::kCentral:
-      return msg::NODE_CENTRAL;
-    case ChildKind::kPlant:
-      return msg::NODE_PLANT;
-  }
-  return msg::NODE_PLANT;
-}
 }  // namespace
 
 Child* Fleet::find(const std::string& name) {
@@ -36,15 +23,7 @@ Child* Fleet::find(const std::string& name) {
 }
 
 void Fleet::publish_member(const Child& c, msg::MemberEvent kind) {
-  msg::MembershipEvent e;
-  e.seq(++member_seq_);
-  e.name(c.name);
-  e.node_kind(to_msg(c.kind));
-  e.side(comm::to_msg_side(c.side));
-  e.index(c.index);
-  e.kind(kind);
-  e.wall_s(since(t_launch_));
-  w_member_->write(&e);
+  domain_->publish_member(c, kind, since(t_launch_));
 }
 
 void Fleet::reap(bool expected) {
@@ -191,18 +170,13 @@ void Fleet::open_gate(const msg::FaultGate& g) {
           g.t(), limit);
       break;
     }
-    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.gate_poll);
+    domain_->wait_until(Clock::now() + cfg_.gate_poll);
   }
-  msg::Control c;
-  c.command(msg::CONTROL_GATE_OPEN);
-  c.seq(++control_seq_);
-  c.tick(g.tick());
-  c.member_seq(member_seq_);
-  w_control_->write(&c);
+  domain_->open_gate(g.tick());
 }
 
 void Fleet::take_ticks() {
-  for (auto& [t, h] : ticks_.drain()) {
+  for (auto& [t, h] : domain_->take_ticks()) {
     learn_secure_plant(h);
     clock_.on_tick(writer_prefix(h), {t.t(), t.v_x(), t.energy_J(), t.sides()[msg::SIDE_L].n_active(),
                                       t.sides()[msg::SIDE_R].n_active()});
@@ -245,10 +219,10 @@ void Fleet::run() {
   t_run_ = last_print_ = Clock::now();
   stall_.start(0.0);
   while (rec_.status == "ok" && !plant_done_) {
-    seen_ = signal_.wait_until(seen_, Clock::now() + cfg_.run_poll);
+    domain_->wait_until(Clock::now() + cfg_.run_poll);
     take_ticks();
     take_commands();
-    for (auto& [g, h] : gates_.drain()) {
+    for (auto& [g, h] : domain_->take_gates()) {
       learn_secure_plant(h);
       if (!clock_.from_plant(writer_prefix(h))) continue;
       if (!msg::well_formed(g)) {  // the rule beside the IDL type (idl/rules.hpp)
