@@ -82,7 +82,7 @@ std::string host_text(const YAML::Node& v, const std::string& path, const Contex
   return v.Scalar();
 }
 
-/// hosts: {count, launcher_address, machines: [{address, command}], placement: ["NAME=hN"]}.
+/// hosts: {count, launcher_address, failover, machines: [{address, command}], placement: ["NAME=hN"]}.
 void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
   if (!v.IsMap()) c.fail("hosts", describe(v), "must be a mapping");
   for (auto it = v.begin(); it != v.end(); ++it) {
@@ -95,6 +95,9 @@ void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
       h.count = n;
     } else if (key == "launcher_address") {
       h.launcher_address = host_text(x, path, c);
+    } else if (key == "failover") {
+      if (!x.IsScalar() || !YAML::convert<bool>::decode(x, h.failover))
+        c.fail(path, describe(x), "must be true or false");
     } else if (key == "placement" && x.IsSequence()) {
       for (std::size_t i = 0; i < x.size(); ++i)
         h.placement.push_back(host_text(x[i], path + "[" + std::to_string(i) + "]", c));
@@ -107,7 +110,8 @@ void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
                               x[i]["command"] ? host_text(x[i]["command"], base + ".command", c) : ""});
       }
     } else {
-      c.fail(path, describe(x), "unknown key, or not a list (count, launcher_address, machines, placement)");
+      c.fail(path, describe(x),
+             "unknown key, or not a list (count, launcher_address, failover, machines, placement)");
     }
   }
   if (!h.machines.empty() && h.count == 0) h.count = static_cast<int>(h.machines.size());
@@ -277,6 +281,7 @@ std::string to_yaml(const Scenario& s) {
   if (s.hosts.enabled()) {
     root["hosts"]["count"] = s.hosts.count;
     if (!s.hosts.launcher_address.empty()) root["hosts"]["launcher_address"] = s.hosts.launcher_address;
+    if (!s.hosts.failover) root["hosts"]["failover"] = false;
     for (const auto& m : s.hosts.machines) {
       YAML::Node n;
       n["address"] = m.address;
@@ -315,15 +320,23 @@ std::vector<FieldInfo> host_field_table() {
   count.range = Range{1, static_cast<double>(kMaxHosts), false, false, false, 1};
   count.unit = "1";
   count.default_value = "0";
-  return {count,
-          info("hosts.launcher_address", FieldType::kText, "an IP address",
-               "the address real machines reach the launcher at (needed with hosts.machines)"),
-          info("hosts.machines[].address", FieldType::kText, "an IPv4 address",
-               "a real machine's address, one entry per host (without machines each host is a namespace here)"),
-          info("hosts.machines[].command", FieldType::kText, "a command prefix, e.g. ssh user@board1",
-               "what starts a process on that machine, which holds the binaries and run folder at this machine's paths"),
-          info("hosts.placement[]", FieldType::kText, "NAME=hN, e.g. central=h1",
-               "put a process on a host (the rest are spread by the launcher)")};
+  FieldInfo failover =
+      info("hosts.failover", FieldType::kBool, "",
+           "when a host is lost (kill-host), its controllers (central, the groups) start again on "
+           "a surviving host; its agents stay lost (they are the wheels on it)");
+  failover.default_value = "true";
+  return {
+      count,
+      info("hosts.launcher_address", FieldType::kText, "an IP address",
+           "the address real machines reach the launcher at (needed with hosts.machines)"),
+      failover,
+      info("hosts.machines[].address", FieldType::kText, "an IPv4 address",
+           "a real machine's address, one entry per host (without machines each host is a namespace here)"),
+      info("hosts.machines[].command", FieldType::kText, "a command prefix, e.g. ssh user@board1",
+           "what starts a process on that machine, which holds the binaries and run folder at this machine's "
+           "paths"),
+      info("hosts.placement[]", FieldType::kText, "NAME=hN, e.g. central=h1",
+           "put a process on a host (the rest are spread by the launcher)")};
 }
 
 std::vector<FieldInfo> reference_field_table() {

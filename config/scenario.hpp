@@ -119,6 +119,8 @@ struct HostsConfig {
   std::vector<HostSpec> machines;      ///< empty, or one per host
   std::vector<std::string> placement;  ///< "L3=h2", "central=h1", ...
   std::string launcher_address;        ///< real machines: this machine's address they reach
+  /// A lost host's controllers (central, the groups) start again on a surviving host.
+  bool failover = true;
   bool enabled() const { return count > 0; }
 };
 

@@ -201,15 +201,28 @@ std::vector<SummaryField> process_keys() {
 
 /// On several hosts only.
 std::vector<SummaryField> host_keys() {
-  return {
-      {"hosts[].name", "text", "", "On several hosts only: the host's name (h0, h1, ...)"},
-      {"hosts[].address", "text", "", "The host's IPv4 address"},
-      {"hosts[].kind", "text", "", "namespace (a Linux network namespace the launcher made) or machine (a real one)"},
-      {"hosts[].processes[]", "text", "", "A process placed on the host at the end of the run"},
-      {"hosts[].discovery_server", "text", "", "The host's discovery server, address:port"},
-      {"hosts[].bytes_sent", "integer|null", "B", "Bytes the host sent on its link during the run; null for a real machine"},
-      {"hosts[].bytes_received", "integer|null", "B", "Bytes the host received on its link during the run; null for a real machine"}
-  };
+  return {{"hosts[].name", "text", "", "On several hosts only: the host's name (h0, h1, ...)"},
+          {"hosts[].address", "text", "", "The host's IPv4 address"},
+          {"hosts[].kind", "text", "",
+           "namespace (a Linux network namespace the launcher made) or machine (a real one)"},
+          {"hosts[].processes[]", "text", "", "A process placed on the host at the end of the run"},
+          {"hosts[].discovery_server", "text", "", "The host's discovery server, address:port"},
+          {"hosts[].bytes_sent", "integer|null", "B",
+           "Bytes the host sent on its link during the run; null for a real machine"},
+          {"hosts[].bytes_received", "integer|null", "B",
+           "Bytes the host received on its link during the run; null for a real machine"},
+          {"failovers[].name", "text", "",
+           "On several hosts only: a controller (central, group-L, group-R) of a lost host that the launcher "
+           "started again elsewhere (hosts.failover)"},
+          {"failovers[].from", "text", "", "The host it was lost with"},
+          {"failovers[].to", "text|null", "", "The host it runs on since; null when no host was left"},
+          {"failovers[].detected_at_s", "number", "s",
+           "Simulated time the host was lost (the controller died with it)"},
+          {"failovers[].running_at_s", "number|null", "s",
+           "Simulated time it was ready again and the plant waited for it; null if not by the end"},
+          {"failovers[].ready_wall_s", "number|null", "s",
+           "Wall time from its start on the new host until it was ready"},
+          {"failovers[].problem", "text", "", "Why it was not started again (present only then)"}};
 }
 
 /// run.mcap against what the plant used.

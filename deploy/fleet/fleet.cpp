@@ -344,6 +344,7 @@ void Fleet::end() {
     std::vector<std::string> servers;
     for (const auto& ds : ds_) servers.push_back(ds->address());
     rec_.hosts = hosts_->record(kids_, servers);
+    rec_.failovers = failovers_json(failovers_);
     hosts_.reset();  // the namespaces, veths and bridge
   }
   clean_shm_after_run(o_.domain, std::max(ids_.highest(), recorder_ ? recorder_->participant_id() : -1),

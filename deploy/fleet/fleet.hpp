@@ -109,6 +109,11 @@ class Fleet {
   // A fleet on several hosts (fleet_hosts.cpp).
   void setup_hosts();
   std::vector<std::string> apply_host_fault(const config::FaultSpec& f, double at_s);
+  /// Starts again on a surviving host each controller of a lost host once it is reaped
+  /// (hosts.failover); returns their names.
+  std::vector<std::string> fail_over();
+  /// A failed-over controller `c` is ready again: its failover ends at the plant's time.
+  void failed_over(const Child& c);
   bool on_hosts() const { return hosts_ != nullptr; }
   double since(Clock::time_point t0) const;
 
@@ -123,6 +128,7 @@ class Fleet {
   ParticipantIds ids_;
   std::vector<std::unique_ptr<DiscoveryServer>> ds_;  ///< one, one per host, or none (a secure domain)
   std::unique_ptr<HostPlacement> hosts_;              ///< none: every process on this machine
+  std::vector<Failover> failovers_;                   ///< controllers of lost hosts started elsewhere
   std::unique_ptr<LauncherParticipant> domain_;       ///< the launcher's participant
   std::unique_ptr<FleetRecorder> recorder_;  ///< run.mcap (records nothing when the scenario says none)
   std::vector<Child> kids_;

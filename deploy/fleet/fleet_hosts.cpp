@@ -38,8 +38,13 @@ std::vector<std::string> Fleet::apply_host_fault(const config::FaultSpec& f, dou
   if (f.action == "kill-host" && !host.lost) {
     ds.hold();
     ds.kill_now();
-    for (auto& c : kids_)
-      if (c.host == h && c.running && !c.external) kill(c.pid, SIGKILL), killed.push_back(c.name);
+    for (auto& c : kids_) {
+      if (c.host != h || !c.running || c.external) continue;
+      kill(c.pid, SIGKILL);
+      killed.push_back(c.name);
+      const bool controller = c.kind == ChildKind::kCentral || c.kind == ChildKind::kGroup;
+      if (controller && sc_.hosts.failover) failovers_.push_back({c.name, host.name, "", at_s});
+    }
     hosts_->lose(h);
     log_.warn("fault: host {} killed at t={:.2f} s ({} processes)", host.name, at_s, killed.size());
   } else if (f.action == "partition" && !host.partitioned && hosts_->namespaces()) {
@@ -61,6 +66,36 @@ std::vector<std::string> Fleet::apply_host_fault(const config::FaultSpec& f, dou
   schedule_.record(f, at_s, wall_ms, a);
   schedule_.annotate_last("processes", on_host);
   return killed;
+}
+
+std::vector<std::string> Fleet::fail_over() {
+  std::vector<std::string> started;
+  for (auto& f : failovers_) {
+    if (!f.to.empty() || !f.problem.empty()) continue;
+    Child* c = find(f.name);
+    if (!c || c->running) continue;  // not reaped yet
+    if (!hosts_->move_off_lost(*c)) {
+      f.problem = "no host left that is neither lost nor cut off";
+      log_.error("failover: {} of lost host {}: {}", f.name, f.from, f.problem);
+      continue;
+    }
+    spawn_child(*c);
+    c->awaiting_ready = true;
+    f.to = hosts_->host(c->host).name;
+    f.started = Clock::now();
+    started.push_back(f.name);
+    log_.warn("failover: {} of lost host {} started on {} (pid {}) at t={:.2f} s", f.name, f.from, f.to,
+              c->pid, clock_.state().t);
+  }
+  return started;
+}
+
+void Fleet::failed_over(const Child& c) {
+  for (auto& f : failovers_)
+    if (f.name == c.name && !f.to.empty() && f.running_at_s < 0.0) {
+      f.running_at_s = clock_.state().t;
+      f.ready_wall_s = since(f.started);
+    }
 }
 
 }  // namespace maptr::deploy::fleet

@@ -96,6 +96,7 @@ void Fleet::announce_restarted() {
     c->awaiting_ready = false;
     publish_member(*c, msg::MEMBER_STARTED);
     log_.info("{} (pid {}) restarted and ready", c->name, c->pid);
+    failed_over(*c);
   }
 }
 

@@ -156,6 +156,7 @@ void Fleet::open_gate(const msg::FaultGate& g) {
   int retries = 0;
   for (;;) {
     reap(false);
+    for (auto& name : fail_over()) restarted.push_back(name);
     announce_restarted();
     if (!gate_pending(kids_, killed, restarted) || interrupted().load() || plant_done_) break;
     if (since(t0) > limit && retries < cfg_.restart_unready_retries && restart_unready(restarted)) {
@@ -238,6 +239,7 @@ void Fleet::run() {
     }
     announce_restarted();
     reap(false);
+    fail_over();  // the controllers of a host lost by a command, outside any gate
     if (interrupted().load()) rec_.status = "aborted: interrupted";
     stall_.observe(clock_.state().t, gates_seen_, since(t_run_));
     if (rec_.status == "ok" && !plant_done_ && stall_.stalled(since(t_run_))) {

@@ -7,6 +7,22 @@
 
 namespace maptr::deploy::fleet {
 
+nlohmann::json failovers_json(const std::vector<Failover>& fs) {
+  nlohmann::json out = nlohmann::json::array();
+  const auto time = [](double t) { return t >= 0.0 ? nlohmann::json(t) : nlohmann::json(nullptr); };
+  for (const auto& f : fs) {
+    nlohmann::json j = {{"name", f.name},
+                        {"from", f.from},
+                        {"to", f.to.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.to)},
+                        {"detected_at_s", f.detected_at_s},
+                        {"running_at_s", time(f.running_at_s)},
+                        {"ready_wall_s", time(f.ready_wall_s)}};
+    if (!f.problem.empty()) j["problem"] = f.problem;
+    out.push_back(j);
+  }
+  return out;
+}
+
 HostPlacement::HostPlacement(const config::HostsConfig& hc, int domain, spdlog::logger& log)
     : hc_(hc), domain_(domain), log_(log) {
   if (hc.machines.empty()) {

@@ -5,6 +5,7 @@
 // and tells it of host faults; the processes themselves (killing, announcing) stay the fleet's.
 #include <spdlog/logger.h>
 
+#include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -15,6 +16,20 @@
 #include "deploy/fleet/hosts.hpp"
 
 namespace maptr::deploy::fleet {
+
+/// A controller of a lost host started again on a surviving one (hosts.failover).
+struct Failover {
+  std::string name;            ///< central, group-L or group-R
+  std::string from, to;        ///< hosts; `to` empty while it waits to be reaped, or with no host left
+  double detected_at_s = 0.0;  ///< simulated time of the host's loss
+  double running_at_s = -1.0;  ///< simulated time it was ready again (-1: not ready by the end)
+  double ready_wall_s = -1.0;  ///< wall time from its start on the new host to ready, s
+  std::chrono::steady_clock::time_point started;
+  std::string problem;  ///< why it was not started again ("" when it was)
+};
+
+/// The failovers as the summary lists them (null times when they did not happen).
+nlohmann::json failovers_json(const std::vector<Failover>& f);
 
 class HostPlacement {
  public:

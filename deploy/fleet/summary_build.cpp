@@ -183,6 +183,7 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["level2"] = level2_stats(run_dir);
   s["processes"] = processes_json(kids);
   if (!r.hosts.is_null()) s["hosts"] = r.hosts;
+  if (!r.failovers.is_null()) s["failovers"] = r.failovers;
   s["recording"] = recording_check(r.recorded, plant);
   if (s["recording"].is_object()) s["recording"]["rejected"] = r.recorded_rejected;
   const std::string trace = records::trace_path(run_dir);

@@ -36,6 +36,8 @@ struct RunRecord {
   /// Every sample the launcher dropped, by kind (forged, stale, malformed, undecodable).
   std::map<std::string, long> launcher_by_kind;
   nlohmann::json hosts;  ///< a fleet on several hosts: its hosts (else null)
+  nlohmann::json
+      failovers;  ///< a fleet on several hosts: the controllers started again elsewhere (else null)
   /// Messages run.mcap recorded per topic (empty without a recording).
   std::map<std::string, uint64_t> recorded;
   /// Messages run.mcap marks as dropped by the fleet, by verdict (recorder/sample_verdict.hpp).

@@ -255,6 +255,48 @@ TEST_F(Hosts, ProcessOfALostHostRestartsElsewhereThroughTheOtherDiscoveryServers
   }
 }
 
+TEST_F(Hosts, TheControllersOfALostHostFailOverAndTheRunEndsOk) {
+  // The default placement on three hosts puts controllers on h1; its loss at 10 s takes them.
+  TempDir tmp;
+  pid_t pid = 0;
+  const std::string out = tmp.path() + "/run";
+  const auto r =
+      run_hosts(run_args(out, {"--agents", "16", "--duration", "30", "--hosts", "3", "--kill-host", "h1@10"}),
+                out, 600, pid);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto& s = r.summary;
+  EXPECT_EQ(s["status"], "ok") << at(s, {"failovers"});
+  ASSERT_TRUE(s.contains("failovers")) << s.dump();
+  ASSERT_FALSE(s["failovers"].empty()) << "no controller on h1? hosts: " << at(s, {"hosts"});
+  std::map<std::string, std::string> host_at_end;
+  for (const auto& p : s["processes"]) host_at_end[p["name"]] = p.value("host", "");
+  for (const auto& f : s["failovers"]) {
+    const std::string name = f["name"];
+    EXPECT_TRUE(name == "central" || name == "group-L" || name == "group-R") << f.dump();
+    EXPECT_EQ(f["from"], "h1") << f.dump();
+    ASSERT_TRUE(f["to"].is_string()) << f.dump();
+    EXPECT_NE(f["to"], "h1") << f.dump();
+    EXPECT_EQ(host_at_end[name], f["to"]) << name << " does not end on the host it failed over to";
+    EXPECT_DOUBLE_EQ(f["detected_at_s"].get<double>(), 10.0) << f.dump();
+    // The loss acts at a fault gate, which holds the simulated time until the controller is back.
+    ASSERT_TRUE(f["running_at_s"].is_number()) << f.dump();
+    EXPECT_DOUBLE_EQ(f["running_at_s"].get<double>(), 10.0) << f.dump();
+    EXPECT_TRUE(rejoined(s, name)) << name << " did not rejoin the plant";
+  }
+}
+
+TEST_F(Hosts, WithoutFailoverALostHostsControllersStayDeadAndTheRunSaysSo) {
+  TempDir tmp;
+  pid_t pid = 0;
+  const std::string out = tmp.path() + "/run", scen = tmp.path() + "/no-failover.yaml";
+  write_file(scen, "name: no-failover\nagents: 16\nduration_s: 30\nhosts: {count: 3, failover: false}\n");
+  const auto r = run_hosts(run_args(out, {scen, "--kill-host", "h1@10"}), out, 600, pid);
+  const auto& s = r.summary;
+  ASSERT_TRUE(s.contains("status")) << r.output;
+  EXPECT_EQ(s["status"].get<std::string>().rfind("degraded", 0), 0u) << s["status"];
+  EXPECT_TRUE(s["failovers"].empty()) << s["failovers"];
+}
+
 TEST_F(Hosts, NothingIsLeftAfterTheLauncherIsKilled) {
   TempDir tmp;
   const std::string out = tmp.path() + "/run";

@@ -122,11 +122,16 @@ TEST(HostsSection, ReadWrittenAndReadBack) {
   EXPECT_EQ(again.hosts.machines[1].address, "192.168.1.11");
   EXPECT_EQ(again.hosts.placement, std::vector<std::string>{"central=h1"});
   EXPECT_EQ(again.hosts.launcher_address, "192.168.1.10");
+  EXPECT_TRUE(again.hosts.failover) << "on by default";
+  const auto off = maptr::config::parse_scenario("hosts: {count: 3, failover: false}\n", "test");
+  EXPECT_FALSE(off.hosts.failover);
+  EXPECT_FALSE(maptr::config::parse_scenario(maptr::config::to_yaml(off), "again").hosts.failover);
 }
 
 TEST(HostsSection, BadValuesNameTheField) {
-  for (const char* bad : {"hosts: {count: 0}\n", "hosts: {count: 3, disks: 2}\n",
-                          "hosts: {machines: [{address: 10.0.0.1}]}\n"}) {
+  for (const char* bad :
+       {"hosts: {count: 0}\n", "hosts: {count: 3, disks: 2}\n", "hosts: {machines: [{address: 10.0.0.1}]}\n",
+        "hosts: {count: 3, failover: maybe}\n"}) {
     try {
       maptr::config::parse_scenario(bad, "test");
       ADD_FAILURE() << bad << " accepted";
