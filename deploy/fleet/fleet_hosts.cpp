@@ -70,6 +70,7 @@ std::vector<std::string> Fleet::apply_host_fault(const config::FaultSpec& f, dou
 
 std::vector<std::string> Fleet::fail_over() {
   std::vector<std::string> started;
+  if (plant_done_) return started;  // the run is over (the plant's own host may be the lost one)
   for (auto& f : failovers_) {
     if (!f.to.empty() || !f.problem.empty()) continue;
     Child* c = find(f.name);
