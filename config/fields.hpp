@@ -74,6 +74,13 @@ void check_record(const Table<R>& t, const R& rec, const std::string& base, cons
   }
 }
 
+// ---- The hosts section (config/hosts_section.cpp), read and written by hand ----
+
+/// hosts: {count, launcher_address, failover, machines: [{address, command}], placement: [...]}.
+void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c);
+/// The section into `root` (nothing without hosts).
+void write_hosts(const HostsConfig& h, YAML::Node& root);
+
 // ---- The tables ----
 
 inline Range closed(double lo, double hi) { return Range{lo, hi, false, false, false, 1}; }

@@ -76,53 +76,6 @@ std::vector<Segment> read_segment(const YAML::Node& n, const std::string& base, 
   return {g.seg};
 }
 
-/// A text value of the hosts section.
-std::string host_text(const YAML::Node& v, const std::string& path, const Context& c) {
-  if (!v.IsScalar()) c.fail(path, describe(v), "must be text");
-  return v.Scalar();
-}
-
-/// hosts: {count, launcher_address, failover, machines: [{address, command}], placement: ["NAME=hN"]}.
-void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
-  if (!v.IsMap()) c.fail("hosts", describe(v), "must be a mapping");
-  for (auto it = v.begin(); it != v.end(); ++it) {
-    const std::string key = it->first.Scalar(), path = "hosts." + key;
-    const YAML::Node x = it->second;  // a copy: the iterator's value is a temporary
-    if (key == "count") {
-      int n = 0;
-      if (!x.IsScalar() || !YAML::convert<int>::decode(x, n) || n < 1 || n > kMaxHosts)
-        c.fail(path, describe(x), "must be a whole number from 1 to " + std::to_string(kMaxHosts));
-      h.count = n;
-    } else if (key == "launcher_address") {
-      h.launcher_address = host_text(x, path, c);
-    } else if (key == "failover") {
-      if (!x.IsScalar() || !YAML::convert<bool>::decode(x, h.failover))
-        c.fail(path, describe(x), "must be true or false");
-    } else if (key == "placement" && x.IsSequence()) {
-      for (std::size_t i = 0; i < x.size(); ++i)
-        h.placement.push_back(host_text(x[i], path + "[" + std::to_string(i) + "]", c));
-    } else if (key == "machines" && x.IsSequence()) {
-      for (std::size_t i = 0; i < x.size(); ++i) {
-        const std::string base = path + "[" + std::to_string(i) + "]";
-        if (!x[i].IsMap() || !x[i]["address"])
-          c.fail(base, describe(x[i]), "must be {address: IP, command: PREFIX}");
-        h.machines.push_back({host_text(x[i]["address"], base + ".address", c),
-                              x[i]["command"] ? host_text(x[i]["command"], base + ".command", c) : ""});
-      }
-    } else {
-      c.fail(path, describe(x),
-             "unknown key, or not a list (count, launcher_address, failover, machines, placement)");
-    }
-  }
-  if (!h.machines.empty() && h.count == 0) h.count = static_cast<int>(h.machines.size());
-  if (!h.machines.empty() && static_cast<int>(h.machines.size()) != h.count)
-    c.fail("hosts.machines", std::to_string(h.machines.size()) + " machines",
-           "must list one machine per host");
-  if (!h.machines.empty() && h.launcher_address.empty())
-    c.fail("hosts.launcher_address", "(missing)",
-           "real machines need the address they reach this machine at");
-}
-
 /// The scenario's lists: trajectory.segments and faults; and the hosts section.
 bool read_list(const std::string& path, const YAML::Node& v, Scenario& s, const Context& c) {
   if (path == "hosts") {
@@ -278,19 +231,7 @@ std::string to_yaml(const Scenario& s) {
     faults.push_back(m);
   }
   root["faults"] = faults;
-  if (s.hosts.enabled()) {
-    root["hosts"]["count"] = s.hosts.count;
-    if (!s.hosts.launcher_address.empty()) root["hosts"]["launcher_address"] = s.hosts.launcher_address;
-    if (!s.hosts.failover) root["hosts"]["failover"] = false;
-    for (const auto& m : s.hosts.machines) {
-      YAML::Node n;
-      n["address"] = m.address;
-      n["command"] = m.command;
-      n.SetStyle(YAML::EmitterStyle::Flow);
-      root["hosts"]["machines"].push_back(n);
-    }
-    for (const auto& p : s.hosts.placement) root["hosts"]["placement"].push_back(p);
-  }
+  write_hosts(s.hosts, root);
   YAML::Emitter e;
   e << root;
   return std::string(e.c_str()) + "\n";
@@ -302,41 +243,6 @@ std::vector<FieldInfo> field_table() {
   add_infos(out, segment_table(), SegmentInput{}, "trajectory.segments[].");
   add_infos(out, fault_table(), FaultSpec{}, "faults[].");
   return out;
-}
-
-std::vector<FieldInfo> host_field_table() {
-  const auto info = [](const char* path, FieldType type, const char* rule, const char* description) {
-    FieldInfo f;
-    f.path = path;
-    f.type = type;
-    f.rule = rule;
-    f.description = description;
-    f.input_only = false;
-    return f;
-  };
-  FieldInfo count = info("hosts.count", FieldType::kInteger, "",
-                         "hosts h0.. the fleet runs on (network namespaces of this machine, or hosts.machines); "
-                         "absent: every process on this machine, no namespaces");
-  count.range = Range{1, static_cast<double>(kMaxHosts), false, false, false, 1};
-  count.unit = "1";
-  count.default_value = "0";
-  FieldInfo failover =
-      info("hosts.failover", FieldType::kBool, "",
-           "when a host is lost (kill-host), its controllers (central, the groups) start again on "
-           "a surviving host; its agents stay lost (they are the wheels on it)");
-  failover.default_value = "true";
-  return {
-      count,
-      info("hosts.launcher_address", FieldType::kText, "an IP address",
-           "the address real machines reach the launcher at (needed with hosts.machines)"),
-      failover,
-      info("hosts.machines[].address", FieldType::kText, "an IPv4 address",
-           "a real machine's address, one entry per host (without machines each host is a namespace here)"),
-      info("hosts.machines[].command", FieldType::kText, "a command prefix, e.g. ssh user@board1",
-           "what starts a process on that machine, which holds the binaries and run folder at this machine's "
-           "paths"),
-      info("hosts.placement[]", FieldType::kText, "NAME=hN, e.g. central=h1",
-           "put a process on a host (the rest are spread by the launcher)")};
 }
 
 std::vector<FieldInfo> reference_field_table() {
