@@ -2,6 +2,8 @@
 // each is read from and written to the struct. Parsing, validation, to_yaml, set_field and the
 // error messages all come from these tables.
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 #include "config/fields.hpp"
 #include "model/motor.hpp"
@@ -161,112 +163,55 @@ Table<S> robot_fields() {
   };
 }
 
-/// control.*: the wheel PID, Levels 2 and 3 and the agents' safe behaviour.
+/// The rows a core declares beside its tuning struct (control/tunable.hpp), as fields of the
+/// scenario: the struct is a base of the scenario's ControlConfig.
+template <class Tuning>
+Table<S> tunable_fields(const std::vector<control::Tunable<Tuning>>& rows) {
+  Table<S> v;
+  for (const auto& t : rows) {
+    const Range r{t.bounds.min, t.bounds.max, t.bounds.min_open, t.bounds.max_open, false, 1};
+    std::visit(
+        [&](auto ref) {
+          // Reads through a const scenario only (get); writes through a mutable one (set).
+          auto acc = [ref](auto& s) -> auto& {
+            return ref(const_cast<Tuning&>(static_cast<const Tuning&>(s.control)));
+          };
+          using V = std::remove_reference_t<decltype(ref(std::declval<Tuning&>()))>;
+          if constexpr (std::is_same_v<V, double>)
+            v.push_back(real<S>(t.path, acc, r, t.unit, t.description));
+          if constexpr (std::is_same_v<V, int>) v.push_back(integer<S>(t.path, acc, r, t.description));
+          if constexpr (std::is_same_v<V, bool>) v.push_back(flag<S>(t.path, acc, t.description));
+        },
+        t.ref);
+  }
+  return v;
+}
+
+/// control.*: each core's tunables (the agents' PID and safe behaviour, Levels 2 and 3, fault
+/// detection, central's path follower), then the run's own judgement of the path and the
+/// trajectory's ramp, in to_yaml()'s order.
 Table<S> control_fields() {
-  return {
-      real<S>(
-          "control.kp", [](auto& s) -> auto& { return s.control.pid.kp; }, closed(0, 1e6), "V s/rad",
-          "wheel PID proportional gain (kp and ki not both zero); the paper's 0.5 and 2 leave a turn's yaw "
-          "lagging (the run can end degraded: path not followed); the warehouse loop turns with kp 4, ki 20 "
-          "(docs/MODEL.md \"Turning\")"),
-      real<S>(
-          "control.ki", [](auto& s) -> auto& { return s.control.pid.ki; }, closed(0, 1e6), "V/rad",
-          "wheel PID integral gain (with kp: 20 for turns, see kp)"),
-      real<S>(
-          "control.kd", [](auto& s) -> auto& { return s.control.pid.kd; }, closed(0, 1e6), "V s^2/rad",
-          "wheel PID derivative gain"),
-      real<S>(
-          "control.level2_period_s", [](auto& s) -> auto& { return s.control.level2_period_s; },
-          above(0, 1e6), "s", "Level-2 decision period (at least one tick)"),
-      real<S>(
-          "control.level2_defer_s", [](auto& s) -> auto& { return s.control.level2_defer_s; }, closed(0, 60),
-          "s",
-          "a Level-2 decision uses tick k's inputs and is applied at tick k + round(this / dt), solved "
-          "meanwhile on the group's worker thread (0: in tick k)"),
-      integer<S>(
-          "control.horizon", [](auto& s) -> auto& { return s.control.horizon; }, closed(1, 1000),
-          "Level-2 horizon, steps"),
-      real<S>(
-          "control.horizon_step_s", [](auto& s) -> auto& { return s.control.horizon_step_s; }, above(0, 1e3),
-          "s", "Level-2 horizon step"),
-      real<S>(
-          "control.t_on_s", [](auto& s) -> auto& { return s.control.t_on_s; }, above(0, 1e7), "s",
-          "Level-3 period T_ON"),
-      real<S>(
-          "control.thermal_limit_s", [](auto& s) -> auto& { return s.control.thermal_limit_s; },
-          above(0, 1e7), "s", "longest continuous active time of an agent"),
-      flag<S>(
-          "control.oracle", [](auto& s) -> auto& { return s.control.oracle; },
-          "also run the exhaustive Level-2 search and report it"),
-      real<S>(
-          "control.group_hold_s", [](auto& s) -> auto& { return s.control.group_hold_s; }, closed(0, 1e6),
-          "s", "agents hold the last assignment this long without their group"),
-      real<S>(
-          "control.central_timeout_s", [](auto& s) -> auto& { return s.control.central_timeout_s; },
-          closed(0, 1e6), "s", "agents ramp to a stop after this long without central"),
-      real<S>(
-          "control.stop_decel_mps2", [](auto& s) -> auto& { return s.control.stop_decel_mps2; },
-          above(0, 1e3), "m/s^2", "deceleration of that ramp"),
-  };
-}
-
-/// control.path_*: central's path follower and the run's judgement of it.
-Table<S> path_fields() {
-  return {
-      real<S>(
-          "control.path_heading_gain_1_s", [](auto& s) -> auto& { return s.control.path_heading_gain_1_s; },
-          above(0, 1e3), "1/s",
-          "central's path follower: heading gain K (the cross-track error settles critically damped at "
-          "K/2 rad/s)"),
-      real<S>(
-          "control.path_max_correction_rad_s",
-          [](auto& s) -> auto& { return s.control.path_max_correction_rad_s; }, above(0, 1e3), "rad/s",
-          "central's path follower: the most yaw rate its heading loop adds to the path's own "
-          "(curvature x speed) to bring the robot back to the path"),
-      real<S>(
-          "control.path_tolerance_m", [](auto& s) -> auto& { return s.control.path_tolerance_m; },
-          above(0, 1e6), "m",
-          "a run whose cross-track error exceeds this after its first second ends degraded "
-          "(path not followed)"),
-  };
-}
-
-/// control.fault_* (fault detection) and trajectory.accel_mps2, in to_yaml()'s order.
-Table<S> fault_detection_fields() {
-  return {
-      flag<S>(
-          "control.fault_detection", [](auto& s) -> auto& { return s.control.fault_detection; },
-          "the plant publishes what each wheel's drive measures and the groups isolate the agents whose "
-          "measurements disagree with the motor model (docs/ARCHITECTURE.md \"Fault detection\")"),
-      real<S>(
-          "control.fault_current_A", [](auto& s) -> auto& { return s.control.fault_current_A; },
-          above(0, 1e3), "A",
-          "a measured current off the motor model's, or a reported one off the measured speed's, by more "
-          "than this is a residual"),
-      real<S>(
-          "control.fault_jitter_V", [](auto& s) -> auto& { return s.control.fault_jitter_V; }, above(0, 1e3),
-          "V",
-          "an agent's voltage steps apart from its side's median step, their median over the persistence "
-          "time beyond this is a residual (erratic voltages)"),
-      real<S>(
-          "control.fault_persistence_s", [](auto& s) -> auto& { return s.control.fault_persistence_s; },
-          above(0, 1e3), "s", "a residual that lasts this long flags the agent faulty"),
-      real<S>(
-          "control.fault_probation_s", [](auto& s) -> auto& { return s.control.fault_probation_s; },
-          above(0, 1e7), "s",
-          "an isolated agent is let back after this long, doubled each time it is flagged again"),
-      real<S>(
-          "trajectory.accel_mps2", [](auto& s) -> auto& { return s.trajectory.accel_mps2; }, closed(0, 1e3),
-          "m/s^2", "ramp limit on the speed reference (0: steps)"),
-  };
+  Table<S> v;
+  for (auto part :
+       {tunable_fields(control::agent_tunables()), tunable_fields(control::group_tunables()),
+        tunable_fields(control::diagnosis_tunables()), tunable_fields(control::central_tunables())})
+    v.insert(v.end(), part.begin(), part.end());
+  v.push_back(real<S>(
+      "control.path_tolerance_m", [](auto& s) -> auto& { return s.control.path_tolerance_m; }, above(0, 1e6),
+      "m",
+      "a run whose cross-track error exceeds this after its first second ends degraded "
+      "(path not followed)"));
+  v.push_back(real<S>(
+      "trajectory.accel_mps2", [](auto& s) -> auto& { return s.trajectory.accel_mps2; }, closed(0, 1e3),
+      "m/s^2", "ramp limit on the speed reference (0: steps)"));
+  return v;
 }
 
 /// The scenario's own fields, in the order to_yaml() writes them.
 const Table<Scenario>& scenario_table() {
   static const Table<S> t = [] {
     Table<S> v = run_fields();
-    for (auto part : {robot_fields(), control_fields(), path_fields(), fault_detection_fields()})
-      v.insert(v.end(), part.begin(), part.end());
+    for (auto part : {robot_fields(), control_fields()}) v.insert(v.end(), part.begin(), part.end());
     return v;
   }();
   return t;

@@ -18,15 +18,33 @@
 
 #include "control/path.hpp"
 #include "control/trajectory.hpp"
+#include "control/tunable.hpp"
 
 namespace maptr::control {
 
-/// The scenario's control.* fields central reads, declared here and nowhere else (the scenario
-/// holds this struct; config/scenario_fields.cpp gives each its path, range and description).
+/// The scenario's control.* fields central reads, declared here and nowhere else: the member with
+/// its default, and its row in central_tunables() (path, range, unit, description), which the
+/// scenario's table takes as it is (control/tunable.hpp).
 struct CentralTuning {
   double path_heading_gain_1_s = 2.0;      ///< K, 1/s
   double path_max_correction_rad_s = 1.0;  ///< w_corr_max, rad/s
 };
+
+inline std::vector<Tunable<CentralTuning>> central_tunables() {
+  using T = CentralTuning;
+  return {
+      real_tunable<T>(
+          "control.path_heading_gain_1_s", [](T& t) -> double& { return t.path_heading_gain_1_s; },
+          Bounds::above(0, 1e3), "1/s",
+          "central's path follower: heading gain K (the cross-track error settles critically damped at "
+          "K/2 rad/s)"),
+      real_tunable<T>(
+          "control.path_max_correction_rad_s", [](T& t) -> double& { return t.path_max_correction_rad_s; },
+          Bounds::above(0, 1e3), "rad/s",
+          "central's path follower: the most yaw rate its heading loop adds to the path's own "
+          "(curvature x speed) to bring the robot back to the path"),
+  };
+}
 
 /// The tuning, the mission and what central knows of the robot and the run.
 struct CentralConfig : CentralTuning {

@@ -26,6 +26,7 @@
 #include <deque>
 #include <vector>
 
+#include "control/tunable.hpp"
 #include "model/params.hpp"
 
 namespace maptr::control {
@@ -43,6 +44,28 @@ struct DiagnosisTuning {
   double fault_persistence_s = 0.1;  ///< s a residual must last
   double fault_probation_s = 10.0;   ///< s an isolated agent stays out (doubled at each relapse)
 };
+
+/// The rows of DiagnosisTuning's fields in the scenario (control/tunable.hpp).
+inline std::vector<Tunable<DiagnosisTuning>> diagnosis_tunables() {
+  using T = DiagnosisTuning;
+  const auto above = Bounds::above;
+  return {
+      real_tunable<T>(
+          "control.fault_current_A", [](T& t) -> double& { return t.fault_current_A; }, above(0, 1e3), "A",
+          "a measured current off the motor model's, or a reported one off the measured speed's, by more "
+          "than this is a residual"),
+      real_tunable<T>(
+          "control.fault_jitter_V", [](T& t) -> double& { return t.fault_jitter_V; }, above(0, 1e3), "V",
+          "an agent's voltage steps apart from its side's median step, their median over the persistence "
+          "time beyond this is a residual (erratic voltages)"),
+      real_tunable<T>(
+          "control.fault_persistence_s", [](T& t) -> double& { return t.fault_persistence_s; }, above(0, 1e3),
+          "s", "a residual that lasts this long flags the agent faulty"),
+      real_tunable<T>(
+          "control.fault_probation_s", [](T& t) -> double& { return t.fault_probation_s; }, above(0, 1e7),
+          "s", "an isolated agent is let back after this long, doubled each time it is flagged again"),
+  };
+}
 
 /// The thresholds and what the group knows of its robot.
 struct DiagnosisConfig : DiagnosisTuning {

@@ -28,15 +28,16 @@
 #include "control/level2/runner.hpp"
 #include "control/level2/status.hpp"
 #include "control/level3/ledger.hpp"
+#include "control/tunable.hpp"
 #include "model/params.hpp"
 
 namespace maptr::control {
 
 enum class GroupMode { kAll, kEnergyConscious };
 
-/// The scenario's control.* fields the group reads, declared here and nowhere else: the scenario
-/// holds this struct (config::ControlConfig) and its table (config/scenario_fields.cpp) gives
-/// each field its path, range and description. A new field is a member here and a row there.
+/// The scenario's control.* fields the group reads, declared here and nowhere else: the member
+/// with its default, and its row in group_tunables() (path, range, unit, description), which the
+/// scenario's table takes as it is (control/tunable.hpp).
 struct GroupTuning : DiagnosisTuning {
   double level2_period_s = 1.0;    ///< s between Level-2 decisions in cruise (paper: 1 Hz)
   double level2_defer_s = 0.1;     ///< s from a decision's inputs (tick k) to its use (tick k + d)
@@ -47,6 +48,40 @@ struct GroupTuning : DiagnosisTuning {
   bool oracle = false;             ///< also solve by exhaustive search and report its choice
   bool fault_detection = true;     ///< watch the agents when the tick carries measurements
 };
+
+inline std::vector<Tunable<GroupTuning>> group_tunables() {
+  using T = GroupTuning;
+  const auto above = Bounds::above;
+  return {
+      real_tunable<T>(
+          "control.level2_period_s", [](T& t) -> double& { return t.level2_period_s; }, above(0, 1e6), "s",
+          "Level-2 decision period (at least one tick)"),
+      real_tunable<T>(
+          "control.level2_defer_s", [](T& t) -> double& { return t.level2_defer_s; }, Bounds::closed(0, 60),
+          "s",
+          "a Level-2 decision uses tick k's inputs and is applied at tick k + round(this / dt), solved "
+          "meanwhile on the group's worker thread (0: in tick k)"),
+      count_tunable<T>(
+          "control.horizon", [](T& t) -> int& { return t.horizon; }, Bounds::closed(1, 1000),
+          "Level-2 horizon, steps"),
+      real_tunable<T>(
+          "control.horizon_step_s", [](T& t) -> double& { return t.horizon_step_s; }, above(0, 1e3), "s",
+          "Level-2 horizon step"),
+      real_tunable<T>(
+          "control.t_on_s", [](T& t) -> double& { return t.t_on_s; }, above(0, 1e7), "s",
+          "Level-3 period T_ON"),
+      real_tunable<T>(
+          "control.thermal_limit_s", [](T& t) -> double& { return t.thermal_limit_s; }, above(0, 1e7), "s",
+          "longest continuous active time of an agent"),
+      flag_tunable<T>(
+          "control.oracle", [](T& t) -> bool& { return t.oracle; },
+          "also run the exhaustive Level-2 search and report it"),
+      flag_tunable<T>(
+          "control.fault_detection", [](T& t) -> bool& { return t.fault_detection; },
+          "the plant publishes what each wheel's drive measures and the groups isolate the agents whose "
+          "measurements disagree with the motor model (docs/ARCHITECTURE.md \"Fault detection\")"),
+  };
+}
 
 /// The tuning and what the group node knows of the run.
 struct GroupConfig : GroupTuning {

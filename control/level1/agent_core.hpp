@@ -16,23 +16,52 @@
 //   and central in each, or it did not run yet): the agent goes on from tick k-1's speed and
 //   reference carried in tick k, exactly as if it had stepped through them idle
 #include <cstdint>
+#include <vector>
 
 #include "control/level1/pid.hpp"
+#include "control/tunable.hpp"
 #include "model/params.hpp"
 
 namespace maptr::control {
 
 enum class AgentState : uint8_t { kIdle = 0, kActive = 1, kHolding = 2, kCoasting = 3, kStopping = 4 };
 
-/// The scenario's control.* fields the agent reads, declared here and nowhere else: the scenario
-/// holds this struct (config::ControlConfig) and its table (config/scenario_fields.cpp) gives
-/// each field its path, range and description.
+/// The scenario's control.* fields the agent reads, declared here and nowhere else: the member
+/// with its default, and its row in agent_tunables() (path, range, unit, description), which the
+/// scenario's table takes as it is (control/tunable.hpp).
 struct AgentTuning {
   PidGains pid;                    ///< control.kp, control.ki, control.kd
   double group_hold_s = 1.0;       ///< s a silent group's last assignment is held
   double central_timeout_s = 1.0;  ///< s of silence from central before the safe stop
   double stop_decel_mps2 = 2.0;    ///< deceleration of the safe stop, m/s^2
 };
+
+inline std::vector<Tunable<AgentTuning>> agent_tunables() {
+  using T = AgentTuning;
+  const auto closed = Bounds::closed;
+  return {
+      real_tunable<T>(
+          "control.kp", [](T& t) -> double& { return t.pid.kp; }, closed(0, 1e6), "V s/rad",
+          "wheel PID proportional gain (kp and ki not both zero); the paper's 0.5 and 2 leave a turn's yaw "
+          "lagging (the run can end degraded: path not followed); the warehouse loop turns with kp 4, ki 20 "
+          "(docs/MODEL.md \"Turning\")"),
+      real_tunable<T>(
+          "control.ki", [](T& t) -> double& { return t.pid.ki; }, closed(0, 1e6), "V/rad",
+          "wheel PID integral gain (with kp: 20 for turns, see kp)"),
+      real_tunable<T>(
+          "control.kd", [](T& t) -> double& { return t.pid.kd; }, closed(0, 1e6), "V s^2/rad",
+          "wheel PID derivative gain"),
+      real_tunable<T>(
+          "control.group_hold_s", [](T& t) -> double& { return t.group_hold_s; }, closed(0, 1e6), "s",
+          "agents hold the last assignment this long without their group"),
+      real_tunable<T>(
+          "control.central_timeout_s", [](T& t) -> double& { return t.central_timeout_s; }, closed(0, 1e6),
+          "s", "agents ramp to a stop after this long without central"),
+      real_tunable<T>(
+          "control.stop_decel_mps2", [](T& t) -> double& { return t.stop_decel_mps2; }, Bounds::above(0, 1e3),
+          "m/s^2", "deceleration of that ramp"),
+  };
+}
 
 /// The tuning and what the agent node knows of its robot and the run.
 struct AgentConfig : AgentTuning {
