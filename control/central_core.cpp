@@ -16,7 +16,8 @@ CentralOutput CentralCore::step(const CentralInput& in) const {
   if (ref.v > 0.0) {
     const Projection p = path_.project(in.pose, ref.s + c_.search_ahead_m);
     const double k = c_.path_heading_gain_1_s;
-    const double lookahead = std::max(4.0 * std::fabs(in.v_x) / k, c_.min_lookahead_m);
+    const double z = c_.path_damping;
+    const double lookahead = std::max(4.0 * z * z * std::fabs(in.v_x) / k, c_.min_lookahead_m);
     const double wanted = p.on_path.theta - std::atan(p.cross_track / lookahead);
     const double correction = std::clamp(k * wrap_angle(wanted - in.pose.theta),
                                          -c_.path_max_correction_rad_s, c_.path_max_correction_rad_s);

@@ -8,12 +8,13 @@
 // speed is the mission's reference at t_{k+1}; the yaw rate is the path's curvature times that
 // speed plus a heading loop towards a Stanley-style heading (Thrun et al., "Stanley: the robot
 // that won the DARPA Grand Challenge", J. Field Robotics 23(9), 2006):
-//   theta_d = theta_path - atan(e / L),   L = max(4 |v_x| / K, L_min)
+//   theta_d = theta_path - atan(e / L),   L = max(4 zeta^2 |v_x| / K, L_min)
 //   w = v_ref kappa + clamp(K wrap(theta_d - theta), +-w_corr_max)
 // e the signed cross-track error (> 0: the robot is left of the path), K the heading gain.
 // Linearised about the path (e' = v e_theta, e_theta' = w - v kappa), the error obeys
-// e'' + K e' + (K v / L) e = 0: with L = 4 v / K it is critically damped at every speed, with
-// natural frequency K / 2. With no error the command is the mission's profile itself.
+// e'' + K e' + (K v / L) e = 0: with L = 4 zeta^2 v / K its damping ratio is zeta at every
+// speed (zeta = 1, the default: critically damped, natural frequency K / 2). With no error the
+// command is the mission's profile itself.
 #include <utility>
 
 #include "control/path.hpp"
@@ -28,6 +29,7 @@ namespace maptr::control {
 struct CentralTuning {
   double path_heading_gain_1_s = 2.0;      ///< K, 1/s
   double path_max_correction_rad_s = 1.0;  ///< w_corr_max, rad/s
+  double path_damping = 1.0;               ///< zeta of the cross-track error, 1
 };
 
 inline std::vector<Tunable<CentralTuning>> central_tunables() {
@@ -43,6 +45,10 @@ inline std::vector<Tunable<CentralTuning>> central_tunables() {
           Bounds::above(0, 1e3), "rad/s",
           "central's path follower: the most yaw rate its heading loop adds to the path's own "
           "(curvature x speed) to bring the robot back to the path"),
+      real_tunable<T>(
+          "control.path_damping", [](T& t) -> double& { return t.path_damping; }, Bounds::above(0, 100), "1",
+          "central's path follower: damping ratio of the cross-track error (look-ahead L = 4 zeta^2 v / K, "
+          "at least L_min); 1: critically damped, below 1 it overshoots the path and settles sooner"),
   };
 }
 

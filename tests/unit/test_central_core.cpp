@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "config/core_configs.hpp"
+#include "config/scenario.hpp"
 #include "control/central_core.hpp"
 #include "control/path.hpp"
 #include "model/kinematics.hpp"
@@ -141,6 +143,36 @@ double follow(const std::vector<Segment>& segs, Pose start, double run_s, double
     }
   }
   return worst;
+}
+
+/// The furthest a robot started 0.5 m left of a straight at 1 m/s goes past it (right of it), m,
+/// with the follower's damping ratio `zeta` set through the scenario's field.
+double overshoot(double zeta) {
+  maptr::config::Scenario s;
+  maptr::config::set_field(s, "control.path_damping", std::to_string(zeta), "test");
+  CentralConfig c = maptr::config::central_config(s);
+  c.trajectory.segments = {Segment{"straight", 1.0, 0.0, 30.0, ""}};
+  const CentralCore core(c);
+  const Path path(c.trajectory);
+  Pose x{0.0, 0.5, 0.0};
+  double worst = 0.0;
+  for (int k = 0; k * c.dt_s < 30.0; ++k) {
+    const CentralOutput o = core.step(CentralInput{k * c.dt_s, x, 1.0, 0, 0});
+    x.x += o.v_x_ref * std::cos(x.theta) * c.dt_s;
+    x.y += o.v_x_ref * std::sin(x.theta) * c.dt_s;
+    x.theta += o.w_ref * c.dt_s;
+    worst = std::max(worst, -path.project(x, x.x + 2.0).cross_track);
+  }
+  return worst;
+}
+
+TEST(CentralCore, TheScenariosDampingRatioShapesTheWayBackToThePath) {
+  // zeta = 1 (the default): critically damped, never past the line; zeta = 0.5 (L = L_min at
+  // K = 2, v = 1): underdamped, past it by about exp(-pi zeta / sqrt(1 - zeta^2)) = 16 % of the
+  // 0.5 m offset.
+  EXPECT_LT(overshoot(1.0), 2e-3);
+  EXPECT_GT(overshoot(0.5), 0.04);
+  EXPECT_LT(overshoot(0.5), 0.12);
 }
 
 TEST(CentralCore, TheFollowerConvergesOnAStraightAndOnACircle) {
