@@ -48,7 +48,7 @@ Fleet::Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg
       cfg_path_(o.run_dir + "/scenario.yaml"),
       ids_(fleet_participants(o.scenario.robot.agents),
            (comm::rtps_max_participant_id(o.domain) + 1) / fleet_participants(o.scenario.robot.agents)),
-      schedule_(launcher_faults(o.scenario.faults)),
+      faults_(launcher_faults(o.scenario.faults), *this),
       stall_(o.stall_s > 0.0 ? o.stall_s : cfg.stall_s) {
   const int agents = sc_.robot.agents;
   std::filesystem::create_directories(o.run_dir + "/logs");
@@ -355,7 +355,7 @@ nlohmann::json Fleet::summary() {
   rec_.discovery_restarts = 0;
   for (const auto& ds : ds_) rec_.discovery_restarts += ds->restarts();
   rec_.last_tick = clock_.state();
-  rec_.failures = schedule_.records();
+  rec_.failures = faults_.schedule().records();
   auto& kinds = rec_.launcher_by_kind;  // holds the malformed fault gates counted during the run
   for (const auto& [kind, n] : rec_.ready_rejected) kinds[kind] += n;
   kinds["forged"] += clock_.rejected();  // ticks and gates not from the plant (malformed ones too)

@@ -18,7 +18,7 @@
 #include "deploy/fleet/config.hpp"
 #include "deploy/fleet/control_fifo.hpp"
 #include "deploy/fleet/discovery.hpp"
-#include "deploy/fleet/fault_schedule.hpp"
+#include "deploy/fleet/fault_execution.hpp"
 #include "deploy/fleet/fleet_recorder.hpp"
 #include "deploy/fleet/host_placement.hpp"
 #include "deploy/fleet/launcher.hpp"
@@ -37,7 +37,7 @@ namespace maptr::deploy::fleet {
 /// The GUID prefix of the participant of the writer behind a DDS instance handle.
 GuidPrefix writer_prefix(const eprosima::fastrtps::rtps::InstanceHandle_t& h);
 
-class Fleet {
+class Fleet : private FaultTargets {
  public:
   /// Sets up the run directory, the discovery server and the launcher's participant.
   Fleet(const LaunchOptions& o, spdlog::logger& log, const FleetConfig& cfg = {});
@@ -98,6 +98,12 @@ class Fleet {
   void on_exit(const Exit& e, bool expected);
   void publish_member(const Child& c, msg::MemberEvent kind);
   void apply_fault(const config::FaultSpec& f, double at_s, const std::string& origin);
+  // The fleet's processes as targets of faults (fault_execution.hpp).
+  TargetState state_of(const std::string& target) override;
+  pid_t pid_of(const std::string& target) override;
+  void kill_target(const std::string& target) override;
+  void restart_target(const std::string& target) override;
+  void pause_target(const std::string& target, bool pause) override;
   void pause_or_resume(Child* c, pid_t pid, bool pause);
   void open_gate(const msg::FaultGate& g);
   bool restart_unready(const std::vector<std::string>& restarted);
@@ -136,7 +142,7 @@ class Fleet {
   std::unique_ptr<Zygote> zygote_;  ///< forks the agents on this machine (none: exec)
   std::unique_ptr<ControlFifo> fifo_;
   std::unique_ptr<FleetRegistration> registration_;  ///< `maptr ps` finds the fleet while it runs
-  FaultSchedule schedule_;
+  FaultExecution faults_;  ///< the schedule, applied through this fleet's FaultTargets
   PlantClock clock_;
   StallWatch stall_;
   long gates_seen_ = 0;

@@ -26,7 +26,7 @@ std::vector<std::string> Fleet::apply_host_fault(const config::FaultSpec& f, dou
   int h = -1;
   config::parse_host_name(f.target, h);
   if (h < 0 || h >= hosts_->count()) {
-    schedule_.record(f, at_s, wall_ms, {FaultAction::kSkip, "no such host"});
+    faults_.schedule().record(f, at_s, wall_ms, {FaultAction::kSkip, "no such host"});
     return {};
   }
   const Host& host = hosts_->host(h);
@@ -63,8 +63,8 @@ std::vector<std::string> Fleet::apply_host_fault(const config::FaultSpec& f, dou
     a = {FaultAction::kSkip, hosts_->namespaces() ? "host not in a state for this action"
                                                   : "a real machine's link is not the launcher's to cut"};
   }
-  schedule_.record(f, at_s, wall_ms, a);
-  schedule_.annotate_last("processes", on_host);
+  faults_.schedule().record(f, at_s, wall_ms, a);
+  faults_.schedule().annotate_last("processes", on_host);
   return killed;
 }
 

@@ -68,44 +68,43 @@ void Fleet::on_exit(const Exit& e, bool expected) {
   }
 }
 
-void Fleet::apply_fault(const config::FaultSpec& f, double at_s, const std::string& origin) {
-  const double wall_ms = wall_ms_now();
-  const bool discovery = f.target == kDiscoveryTarget;
-  Child* c = discovery ? nullptr : find(f.target);
-  TargetState s;
-  if (discovery && !ds_.empty()) s = {true, false, ds_.front()->running(), ds_paused_};
-  if (c) s = {true, c->external, c->running, c->paused};
-  const FaultAction a = decide_fault(f, s);
-  const pid_t pid = discovery ? (ds_.empty() ? -1 : ds_.front()->pid()) : (c ? c->pid : -1);
-  const std::string who = discovery ? std::string("the discovery server") : f.target;
-  switch (a.kind) {
-    case FaultAction::kKill:
-      if (discovery) {
-        if (ds_.empty()) break;
-        kill(pid, SIGCONT);  // a stopped server would not end on SIGTERM
-        ds_paused_ = false;
-        ds_.front()->kill_now();
-      } else {
-        kill(pid, SIGKILL);
-      }
-      log_.warn("fault: killed {} (pid {}) at t={:.2f} s", who, pid, at_s);
-      break;
-    case FaultAction::kRestart:
-      if (on_hosts()) hosts_->move_off_lost(*c);
-      spawn_child(*c);
-      c->awaiting_ready = true;
-      log_.warn("fault: restarted {} (pid {}) at t={:.2f} s", c->name, c->pid, at_s);
-      break;
-    case FaultAction::kPause:
-    case FaultAction::kResume:
-      pause_or_resume(c, pid, a.kind == FaultAction::kPause);
-      log_.warn("fault: {} {} (pid {}) at t={:.2f} s", a.kind == FaultAction::kPause ? "paused" : "resumed",
-                who, pid, at_s);
-      break;
-    case FaultAction::kSkip:
-      break;
+TargetState Fleet::state_of(const std::string& target) {
+  if (target == kDiscoveryTarget)
+    return ds_.empty() ? TargetState{} : TargetState{true, false, ds_.front()->running(), ds_paused_};
+  const Child* c = find(target);
+  return c ? TargetState{true, c->external, c->running, c->paused} : TargetState{};
+}
+
+pid_t Fleet::pid_of(const std::string& target) {
+  if (target == kDiscoveryTarget) return ds_.empty() ? -1 : ds_.front()->pid();
+  const Child* c = find(target);
+  return c ? c->pid : -1;
+}
+
+void Fleet::kill_target(const std::string& target) {
+  if (target != kDiscoveryTarget) {
+    kill(find(target)->pid, SIGKILL);
+    return;
   }
-  schedule_.record(f, at_s, wall_ms, a, origin);
+  kill(ds_.front()->pid(), SIGCONT);  // a stopped server would not end on SIGTERM
+  ds_paused_ = false;
+  ds_.front()->kill_now();
+}
+
+void Fleet::restart_target(const std::string& target) {
+  Child& c = *find(target);
+  if (on_hosts()) hosts_->move_off_lost(c);
+  spawn_child(c);
+  c.awaiting_ready = true;
+}
+
+void Fleet::pause_target(const std::string& target, bool pause) {
+  pause_or_resume(target == kDiscoveryTarget ? nullptr : find(target), pid_of(target), pause);
+}
+
+void Fleet::apply_fault(const config::FaultSpec& f, double at_s, const std::string& origin) {
+  const FaultOutcome o = faults_.apply(f, at_s, wall_ms_now(), origin);
+  if (!o.line.empty()) log_.warn("{}", o.line);
 }
 
 void Fleet::pause_or_resume(Child* c, pid_t pid, bool pause) {
@@ -142,7 +141,7 @@ void Fleet::open_gate(const msg::FaultGate& g) {
   // Apply every scheduled fault due at the gate's time, wait until each killed process is
   // reaped (its death published) and each restarted one is ready, then let the plant go on.
   std::vector<std::string> killed, restarted;
-  for (const auto& f : schedule_.due(g.t())) {
+  for (const auto& f : faults_.due(g.t())) {
     if (f.action == "kill") killed.push_back(f.target);
     if (f.action == "restart") restarted.push_back(f.target);
     if (config::is_host_action(f.action)) {
@@ -250,7 +249,7 @@ void Fleet::run() {
     print_progress();
   }
   rec_.run_wall_s = since(t_run_);
-  schedule_.close();
+  faults_.schedule().close();
 }
 
 }  // namespace maptr::deploy::fleet

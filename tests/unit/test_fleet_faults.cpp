@@ -7,6 +7,7 @@
 #include <set>
 
 #include "deploy/fleet/fault_analysis.hpp"
+#include "deploy/fleet/fault_execution.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
 #include "records/trace.hpp"
 #include "tests/unit/unit_temp_dir.hpp"
@@ -85,6 +86,69 @@ TEST(FleetFaultSchedule, RecordsSayWhoAskedForTheFault) {
   EXPECT_EQ(r[0]["origin"], "chaos");
   EXPECT_EQ(r[1]["origin"], "scheduled");
   EXPECT_FALSE(r[1].contains("skipped"));
+}
+
+namespace {
+/// Processes as the execution sees them: a state and a pid each, and what was done to them.
+struct StubTargets : FaultTargets {
+  std::map<std::string, TargetState> state;
+  std::map<std::string, pid_t> pid;
+  std::vector<std::string> done;
+  TargetState state_of(const std::string& t) override { return state.count(t) ? state[t] : TargetState{}; }
+  pid_t pid_of(const std::string& t) override { return pid.count(t) ? pid[t] : -1; }
+  void kill_target(const std::string& t) override {
+    done.push_back("kill " + t);
+    state[t].running = false;
+  }
+  void restart_target(const std::string& t) override {
+    done.push_back("restart " + t);
+    state[t].running = true;
+    pid[t] += 100;
+  }
+  void pause_target(const std::string& t, bool p) override {
+    done.push_back((p ? "pause " : "resume ") + t);
+    state[t].paused = p;
+  }
+};
+}  // namespace
+
+TEST(FleetFaultExecution, EachFaultActsOnItsTargetThroughTheRuleAndIsRecorded) {
+  StubTargets t;
+  t.state["L1"] = {true, false, true, false};
+  t.pid["L1"] = 41;
+  t.state["central"] = {true, true, true, false};  // external: the user's to end
+  FaultExecution x(
+      {{"L1", "kill", 5.0}, {"L1", "restart", 8.0}, {"central", "kill", 9.0}, {"R7", "pause", 9.0}}, t);
+  const auto at5 = x.due(5.0);
+  ASSERT_EQ(at5.size(), 1u);
+  EXPECT_EQ(x.apply(at5[0], 5.0, 1.0, "scheduled").line, "fault: killed L1 (pid 41) at t=5.00 s");
+  const auto at8 = x.due(8.0);
+  ASSERT_EQ(at8.size(), 1u);
+  EXPECT_EQ(x.apply(at8[0], 8.0, 2.0, "chaos").line, "fault: restarted L1 (pid 141) at t=8.00 s")
+      << "the line names the new process";
+  for (const auto& f : x.due(9.0)) {
+    const FaultOutcome o = x.apply(f, 9.0, 3.0, "command");
+    EXPECT_EQ(o.action.kind, FaultAction::kSkip) << f.target;
+    EXPECT_TRUE(o.line.empty());
+  }
+  EXPECT_EQ(t.done, (std::vector<std::string>{"kill L1", "restart L1"}));
+  const auto& r = x.schedule().records();
+  ASSERT_EQ(r.size(), 4u);
+  EXPECT_EQ(r[1]["origin"], "chaos");
+  EXPECT_TRUE(r[2].contains("skipped")) << r[2].dump();
+  EXPECT_TRUE(r[3].contains("skipped")) << r[3].dump();
+}
+
+TEST(FleetFaultExecution, APauseAndItsResumeReachTheTarget) {
+  StubTargets t;
+  t.state["discovery"] = {true, false, true, false};
+  t.pid["discovery"] = 7;
+  FaultExecution x({{"discovery", "pause", 1.0}, {"discovery", "resume", 2.0}}, t);
+  EXPECT_EQ(x.apply(x.due(1.0).at(0), 1.0, 0.0, "scheduled").line,
+            "fault: paused the discovery server (pid 7) at t=1.00 s");
+  EXPECT_EQ(x.apply(x.due(2.0).at(0), 2.0, 0.0, "scheduled").line,
+            "fault: resumed the discovery server (pid 7) at t=2.00 s");
+  EXPECT_EQ(t.done, (std::vector<std::string>{"pause discovery", "resume discovery"}));
 }
 
 TEST(FleetChaos, PausesAndTheDiscoveryServerWhenAsked) {
