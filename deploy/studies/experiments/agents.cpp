@@ -36,13 +36,13 @@ std::vector<records::ResultColumn> columns() {
           {"gross_kg", "gross kg", 1},
           {"E_NO_kJ", "E_NO kJ", 3},
           {"E_EC_kJ", "E_EC kJ", 3},
-          {"saving_pct", "saving %", 2},
+          column::kSavingPct,
           {"active_EC_end", "active EC (end)", 0},
-          {"active_EC_mean", "active EC (mean, 2nd half)", 1},
-          {"eff_NO", "eff NO", 3},
-          {"eff_EC", "eff EC", 3},
-          {"status_NO", "status NO", -1},
-          {"status_EC", "status EC", -1}};
+          column::kActiveECMean,
+          column::kEffNO,
+          column::kEffEC,
+          column::kStatusNO,
+          column::kStatusEC};
 }
 
 json row_of(const Series& se, int n, double gross, const RunPair& p) {

@@ -35,13 +35,13 @@ std::vector<records::ResultColumn> columns() {
           {"lasted_s", "lasted s", 0},
           {"distance_km", "distance km", 2},
           {"energy_kJ", "energy kJ", 1},
-          {"mileage", "mileage m/J", 4},
+          column::kMileage,
           {"drawn_mAh", "drawn mAh (L)", 0},
           {"battery_V_end", "V_B at end", 2},
           {"eff_mean", "eff (mean, 2nd half)", 3},
-          {"active_mean", "active (mean, 2nd half)", 2},
+          column::kActiveMean,
           {"end_reason", "end", -1},
-          {"status", "status", -1}};
+          column::kStatus};
 }
 
 /// What a run gives: how long it lasted and whether it ended by losing its speed.

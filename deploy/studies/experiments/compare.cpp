@@ -46,16 +46,16 @@ std::string id_part(const std::string& field, const std::string& value) {
 
 std::vector<records::ResultColumn> columns() {
   return {{"variant", "variant", -1},
-          {"status", "status", -1},
+          column::kStatus,
           {"energy_J", "energy J", 1},
           {"saving_pct", "saving vs first %", 2},
           {"mileage_m_per_J", "mileage m/J", 4},
-          {"distance_m", "distance m", 2},
-          {"cross_track_max_m", "cross-track max m", 3},
-          {"final_position_error_m", "final position error m", 3},
+          column::kDistance,
+          column::kCrossTrackMax,
+          column::kFinalPositionError,
           {"mean_active_agents", "mean active agents", 2},
           {"discharge_mAh", "battery discharge mAh (L+R)", 1},
-          {"trace_sha256", "trace sha256", -1}};
+          column::kTraceSha256};
 }
 
 /// A row's number, NaN when the run did not give it (null).

@@ -11,10 +11,10 @@ namespace {
 std::vector<records::ResultColumn> columns(const std::string& xkey, const std::string& xhead) {
   return {{xkey, xhead, 1},
           {"energy_kJ", "energy kJ", 2},
-          {"mileage", "mileage m/J", 4},
+          column::kMileage,
           {"eff_cruise", "eff (mean, 2nd half)", 3},
-          {"active_mean", "active (mean, 2nd half)", 2},
-          {"active_end", "active (end, L+R)", 0},
+          column::kActiveMean,
+          column::kActiveEnd,
           {"V_applied_V", "applied V (2nd half)", 2},
           {"V_over_VB", "V/V_B", 3},
           {"v_end_mps", "v end m/s", 2},
@@ -22,7 +22,7 @@ std::vector<records::ResultColumn> columns(const std::string& xkey, const std::s
           {"l2_solve_ms", "Ipopt solve ms (median)", 1},
           {"oracle_differs", "Ipopt != oracle", 0},
           {"oracle_checked", "oracle checks", 0},
-          {"status", "status", -1}};
+          column::kStatus};
 }
 
 json row_of(const std::string& xkey, double x, const Run& r) {

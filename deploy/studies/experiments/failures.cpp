@@ -42,7 +42,7 @@ std::vector<records::ResultColumn> columns() {
   return {{"killed_per_side", "killed per side", 0},
           {"tolerance", "tolerance N_i - N_a,i", 0},
           {"killed", "killed", -1},
-          {"detected", "detected", 0},
+          column::kDetected,
           {"detect_wall_ms_max", "detection wall ms (max)", 1},
           {"recovered", "recovered", 0},
           {"recovered_s_max", "recovered at s (latest)", 2},
@@ -50,9 +50,9 @@ std::vector<records::ResultColumn> columns() {
           {"final_speed_mps", "final speed m/s", 3},
           {"active_end_L", "active L (end)", 0},
           {"active_end_R", "active R (end)", 0},
-          {"energy_kJ", "energy kJ", 3},
+          column::kEnergyKJ,
           {"eff_cruise", "eff (2nd half)", 3},
-          {"status", "status", -1}};
+          column::kStatus};
 }
 
 double max_or(double acc, double v) {

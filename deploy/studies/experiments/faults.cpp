@@ -88,16 +88,16 @@ std::vector<records::ResultColumn> columns() {
           {"mode", "mode", -1},
           {"mode_index", "mode index", 0, false, true},
           {"detection", "detection", -1},
-          {"detected", "detected", 0},
+          column::kDetected,
           {"detect_s_max", "detection s (latest)", 2},
           {"isolate_s_max", "isolation s (latest)", 2},
           {"diagnosed", "diagnosed as", -1},
           {"max_speed_error_pct", "max speed error % after the fault", 2},
           {"cross_track_max_m", "path error max m", 3},
-          {"energy_kJ", "energy kJ", 3},
+          column::kEnergyKJ,
           {"energy_penalty_J", "energy penalty J (vs fault-free, before the stop)", 0},
           {"energy_penalty_run_J", "energy penalty J (whole run)", 0},
-          {"status", "status", -1}};
+          column::kStatus};
 }
 
 /// The run's record of each fault it was given: detection and isolation delays (s after the

@@ -25,24 +25,24 @@ std::vector<records::ResultColumn> columns() {
           {"E_NO_paper_kJ", "E_NO paper", 2},
           {"E_EC_kJ", "E_EC kJ", 2},
           {"E_EC_paper_kJ", "E_EC paper", 2},
-          {"saving_pct", "saving %", 2},
+          column::kSavingPct,
           {"saving_paper_pct", "saving paper", 2},
           {"active_EC_end", "active EC (end, L+R)", 0},
-          {"active_EC_mean", "active EC (mean, 2nd half)", 1},
+          column::kActiveECMean,
           {"active_paper", "active paper", 0},
           {"mileage_NO", "mileage NO m/J", 4},
           {"mileage_NO_paper", "NO paper", 4},
           {"mileage_EC", "mileage EC m/J", 4},
           {"mileage_EC_paper", "EC paper", 4},
-          {"eff_NO", "eff NO", 3},
-          {"eff_EC", "eff EC", 3},
+          column::kEffNO,
+          column::kEffEC,
           {"V_over_VB_EC", "V/V_B EC", 3},
           {"v_end_NO_mps", "v end NO m/s", 2},
           {"v_end_EC_mps", "v end EC m/s", 2},
           {"distance_NO_m", "distance NO m", 0, false},
           {"distance_EC_m", "distance EC m", 0, false},
-          {"status_NO", "status NO", -1},
-          {"status_EC", "status EC", -1}};
+          column::kStatusNO,
+          column::kStatusEC};
 }
 
 json row_of(double m, const RunPair& p) {

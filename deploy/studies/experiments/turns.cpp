@@ -145,16 +145,16 @@ json loop_row(const std::string& mode, const Run& r) {
 
 std::vector<records::ResultColumn> loop_columns() {
   return {{"mode", "mode", -1},
-          {"energy_kJ", "energy kJ", 3},
-          {"mileage", "mileage m/J", 4},
-          {"distance_m", "distance m", 2},
+          column::kEnergyKJ,
+          column::kMileage,
+          column::kDistance,
           {"active_mean", "active (mean, L+R)", 2},
-          {"cross_track_max_m", "cross-track max m", 3},
+          column::kCrossTrackMax,
           {"cross_track_rms_m", "cross-track rms m", 3},
           {"heading_error_max_rad", "heading error max rad", 3},
-          {"final_position_error_m", "final position error m", 3},
-          {"status", "status", -1},
-          {"trace_sha256", "trace sha256", -1}};
+          column::kFinalPositionError,
+          column::kStatus,
+          column::kTraceSha256};
 }
 
 /// series/loop-difference.csv: E_EC - E_NO (J) and the active agents of each mode at the trace

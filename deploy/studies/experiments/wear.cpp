@@ -26,8 +26,8 @@ constexpr double kCruiseAfterReachS = 2.0;
 
 std::vector<records::ResultColumn> columns() {
   return {{"agents", "N", 0},
-          {"active_mean", "active (mean, 2nd half)", 2},
-          {"active_end", "active (end, L+R)", 0},
+          column::kActiveMean,
+          column::kActiveEnd,
           {"idle_mean_steps", "idle per agent (T_ON steps)", 2},
           {"idle_min_steps", "idle min", 2},
           {"idle_max_steps", "idle max", 2},
@@ -39,7 +39,7 @@ std::vector<records::ResultColumn> columns() {
           {"spread_bound_m", "bound m", 1},
           {"drove_in_cruise_L", "agents that drove in cruise L", 0},
           {"drove_in_cruise_R", "R", 0},
-          {"status", "status", -1}};
+          column::kStatus};
 }
 
 /// Idle time per agent: run time minus the plant's driving time of the agent.
