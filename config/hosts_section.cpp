@@ -16,7 +16,7 @@ std::string host_text(const YAML::Node& v, const std::string& path, const Contex
 }
 }  // namespace
 
-/// hosts: {count, launcher_address, failover, machines: [{address, command}], placement: ["NAME=hN"]}.
+/// hosts: {count, launcher_address, failover, ssh, machines: [{address, command}], placement: ["NAME=hN"]}.
 void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
   if (!v.IsMap()) c.fail("hosts", describe(v), "must be a mapping");
   for (auto it = v.begin(); it != v.end(); ++it) {
@@ -29,8 +29,8 @@ void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
       h.count = n;
     } else if (key == "launcher_address") {
       h.launcher_address = host_text(x, path, c);
-    } else if (key == "failover") {
-      if (!x.IsScalar() || !YAML::convert<bool>::decode(x, h.failover))
+    } else if (key == "failover" || key == "ssh") {
+      if (!x.IsScalar() || !YAML::convert<bool>::decode(x, key == "ssh" ? h.ssh : h.failover))
         c.fail(path, describe(x), "must be true or false");
     } else if (key == "placement" && x.IsSequence()) {
       for (std::size_t i = 0; i < x.size(); ++i)
@@ -45,13 +45,16 @@ void read_hosts(const YAML::Node& v, HostsConfig& h, const Context& c) {
       }
     } else {
       c.fail(path, describe(x),
-             "unknown key, or not a list (count, launcher_address, failover, machines, placement)");
+             "unknown key, or not a list (count, launcher_address, failover, ssh, machines, placement)");
     }
   }
   if (!h.machines.empty() && h.count == 0) h.count = static_cast<int>(h.machines.size());
   if (!h.machines.empty() && static_cast<int>(h.machines.size()) != h.count)
     c.fail("hosts.machines", std::to_string(h.machines.size()) + " machines",
            "must list one machine per host");
+  if (!h.machines.empty() && h.ssh)
+    c.fail("hosts.ssh", "true",
+           "is the rehearsal on namespace hosts; real machines give their own ssh command");
   if (!h.machines.empty() && h.launcher_address.empty())
     c.fail("hosts.launcher_address", "(missing)",
            "real machines need the address they reach this machine at");
@@ -62,6 +65,7 @@ void write_hosts(const HostsConfig& h, YAML::Node& root) {
   root["hosts"]["count"] = h.count;
   if (!h.launcher_address.empty()) root["hosts"]["launcher_address"] = h.launcher_address;
   if (!h.failover) root["hosts"]["failover"] = false;
+  if (h.ssh) root["hosts"]["ssh"] = true;
   for (const auto& m : h.machines) {
     YAML::Node n;
     n["address"] = m.address;
@@ -96,11 +100,17 @@ std::vector<FieldInfo> host_field_table() {
            "when a host is lost (kill-host), its controllers (central, the groups) start again on "
            "a surviving host; its agents stay lost (they are the wheels on it)");
   failover.default_value = "true";
+  FieldInfo ssh =
+      info("hosts.ssh", FieldType::kBool, "",
+           "namespace hosts as real machines: an OpenSSH server in each, a key pair made for the run, "
+           "and every process started over ssh (the rehearsal of hosts.machines; needs openssh-server)");
+  ssh.default_value = "false";
   return {
       count,
       info("hosts.launcher_address", FieldType::kText, "an IP address",
            "the address real machines reach the launcher at (needed with hosts.machines)"),
       failover,
+      ssh,
       info("hosts.machines[].address", FieldType::kText, "an IPv4 address",
            "a real machine's address, one entry per host (without machines each host is a namespace here)"),
       info("hosts.machines[].command", FieldType::kText, "a command prefix, e.g. ssh user@board1",

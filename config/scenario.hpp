@@ -121,6 +121,8 @@ struct HostsConfig {
   std::string launcher_address;        ///< real machines: this machine's address they reach
   /// A lost host's controllers (central, the groups) start again on a surviving host.
   bool failover = true;
+  /// Namespace hosts reached over ssh (ssh_servers.hpp): the rehearsal of real machines.
+  bool ssh = false;
   bool enabled() const { return count > 0; }
 };
 

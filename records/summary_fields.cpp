@@ -188,15 +188,23 @@ std::vector<SummaryField> level2_keys() {
 /// Every process of the fleet, the plant first.
 std::vector<SummaryField> process_keys() {
   return {
-      {"processes[].name", "text", "", "The process: plant, central, group-L, group-R or an agent (L0, R3, ...)"},
-      {"processes[].pid", "integer", "1", "Process id of its last start; an external process: the pid it reported, once checked (else -1)"},
-      {"processes[].exit_code", "integer", "1", "Exit status of its last end; -1 when it did not exit (a signal ended it, or it was not reaped)"},
-      {"processes[].signal", "integer", "1", "The signal that ended its last start (9: SIGKILL); 0 when none did"},
-      {"processes[].max_rss_kB", "integer", "kB", "Peak resident memory over its starts, as wait4 reports it; 0 for an external process"},
-      {"processes[].starts", "integer", "1", "Times the launcher started it (1 + restarts); 0 for an external process"},
+      {"processes[].name", "text", "",
+       "The process: plant, central, group-L, group-R or an agent (L0, R3, ...)"},
+      {"processes[].pid", "integer", "1",
+       "Process id of its last start; an external process: the pid it reported, once checked (else -1)"},
+      {"processes[].exit_code", "integer", "1",
+       "Exit status of its last end; -1 when it did not exit (a signal ended it, or it was not reaped)"},
+      {"processes[].signal", "integer", "1",
+       "The signal that ended its last start (9: SIGKILL); 0 when none did"},
+      {"processes[].max_rss_kB", "integer", "kB",
+       "Peak resident memory over its starts, as wait4 reports it; 0 for an external process"},
+      {"processes[].starts", "integer", "1",
+       "Times the launcher started it (1 + restarts); 0 for an external process"},
       {"processes[].external", "bool", "", "True when the user started it (--external), not the launcher"},
-      {"processes[].host", "text", "", "On several hosts only: the host it ran on last (h0, h1, ...)"}
-  };
+      {"processes[].host", "text", "", "On several hosts only: the host it ran on last (h0, h1, ...)"},
+      {"processes[].started_by", "text", "",
+       "On several hosts only: the command that started it there (ssh, ip for a namespace, or the "
+       "machine's own; \"\" for this machine)"}};
 }
 
 /// On several hosts only.
@@ -206,6 +214,9 @@ std::vector<SummaryField> host_keys() {
           {"hosts[].kind", "text", "",
            "namespace (a Linux network namespace the launcher made) or machine (a real one)"},
           {"hosts[].processes[]", "text", "", "A process placed on the host at the end of the run"},
+          {"hosts[].started_by", "text", "",
+           "The command that starts a process there: ssh (hosts.ssh, or a machine's ssh command), ip "
+           "(ip netns exec) or \"\" (this machine)"},
           {"hosts[].discovery_server", "text", "", "The host's discovery server, address:port"},
           {"hosts[].bytes_sent", "integer|null", "B",
            "Bytes the host sent on its link during the run; null for a real machine"},

@@ -172,6 +172,9 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--hosts", a.hosts, "run the fleet on N hosts (network namespaces; needs root)")
       ->check(CLI::Range(1, config::kMaxHosts));
   run->add_option("--place", a.placement, "put a process on a host, e.g. central=h1 (repeatable)");
+  run->add_flag("--ssh", a.ssh,
+                "with --hosts: an ssh server in each namespace host and every process started over ssh (the "
+                "rehearsal of real machines; needs openssh-server)");
   run->add_option("--kill-host", a.kill_hosts, "kill every process of a host and cut its link, e.g. h2@20");
   run->add_option("--partition", a.partitions, "cut a host's link at a simulated time, e.g. h2@20");
   run->add_option("--heal", a.heals, "link a cut host again, e.g. h2@30");
@@ -209,6 +212,12 @@ Scenario scenario_from(const RunArgs& a) {
   if (!a.duration.empty()) config::set_duration(s, a.duration, "--duration");
   if (a.realtime) s.realtime = true;
   if (a.hosts > 0) s.hosts.count = a.hosts;
+  if (a.ssh) s.hosts.ssh = true;
+  if (s.hosts.ssh && !s.hosts.enabled())
+    throw config::ScenarioError(
+        "--ssh: the rehearsal runs on namespace hosts: give --hosts N (or the scenario's hosts.count)");
+  if (s.hosts.ssh && !s.hosts.machines.empty())
+    throw config::ScenarioError("--ssh: the scenario lists hosts.machines; each gives its own ssh command");
   for (const auto& p : a.placement) s.hosts.placement.push_back(p);
   add_faults(s, a.kills, "kill");
   add_faults(s, a.restarts, "restart");

@@ -22,6 +22,7 @@ struct RunArgs {
   std::vector<std::string> kill_hosts, partitions, heals, placement;
   std::vector<std::string> agent_faults, clears;  ///< --fault L3:open@20, --clear L3@40
   int hosts = 0;  ///< --hosts N (0: the scenario's)
+  bool ssh = false;  ///< --ssh
   long long chaos = -1;
   std::string transport = "auto";
   double stall_timeout_s = 0.0;  ///< --stall-timeout S (0: the launcher's default)

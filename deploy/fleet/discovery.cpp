@@ -15,6 +15,7 @@
 
 #include "comm/dds/dds.hpp"
 #include "comm/posix/udp_ports.hpp"
+#include "deploy/fleet/hosts.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -75,7 +76,8 @@ DiscoveryServer::DiscoveryServer(const std::string& binary, const std::string& r
       index_(index),
       count_(static_cast<int>(comm::split_servers(servers).size())),
       netns_(netns),
-      remote_(!netns) {
+      remote_(!netns ||
+              is_ssh_prefix(host_like.prefix)) {  // over ssh: not a process of this machine to watch
   address_ = comm::split_servers(servers).at(static_cast<std::size_t>(index));
   c_.name = "discovery-h" + std::to_string(index);
   c_.binary = binary;

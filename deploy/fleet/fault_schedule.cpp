@@ -104,6 +104,9 @@ FaultAction decide_fault(const config::FaultSpec& f, const TargetState& s) {
     return {FaultAction::kSkip, "the discovery server is restarted by the launcher when it dies"};
   if (s.known && s.external)
     return {FaultAction::kSkip, "an external process is not the launcher's to kill or start"};
+  if (s.known && s.remote && (f.action == "pause" || f.action == "resume"))
+    return {FaultAction::kSkip,
+            "a process started over ssh runs on its machine: SIGSTOP would stop its ssh client, not it"};
   if (s.known && s.running) {
     if (f.action == "kill") return {FaultAction::kKill, ""};
     if (f.action == "pause" && !s.paused) return {FaultAction::kPause, ""};

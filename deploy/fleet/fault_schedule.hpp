@@ -44,6 +44,7 @@ struct TargetState {
   bool external = false;  ///< started by the user, not the launcher's to kill or start
   bool running = false;
   bool paused = false;  ///< stopped by a pause fault (SIGSTOP), not resumed yet
+  bool remote = false;  ///< started over ssh: the launcher's pid is its ssh client
 };
 
 /// What the launcher does for a fault: kill, start, pause (SIGSTOP) or resume (SIGCONT) its

@@ -34,7 +34,11 @@ ReadyClaim Fleet::claim_of(const msg::NodeReady& r, const eprosima::fastrtps::rt
         id && !claim.from_current_participant && comm::written_by(dds_.fleet_id, agents, writer, c->name);
   }
   const auto pid = static_cast<pid_t>(r.pid());
-  claim.pid_matches = c->running && pid == c->pid;
+  // A process started over ssh (or on a real machine) has a pid of its machine, not the one of
+  // the launcher's child (its ssh client): there its participant id, given to this start only,
+  // is what says it is the launcher's.
+  const bool remote = c->host >= 0 && on_hosts() && (is_ssh_prefix(c->prefix) || !hosts_->namespaces());
+  claim.pid_matches = c->running && (remote ? claim.from_current_participant : pid == c->pid);
   // A secure process's earlier start has the same certificate: its old pid tells it apart.
   if (secure() && !c->external && claim.from_current_participant && !claim.pid_matches)
     claim.from_earlier_participant = true, claim.from_current_participant = false;

@@ -72,7 +72,7 @@ TargetState Fleet::state_of(const std::string& target) {
   if (target == kDiscoveryTarget)
     return ds_.empty() ? TargetState{} : TargetState{true, false, ds_.front()->running(), ds_paused_};
   const Child* c = find(target);
-  return c ? TargetState{true, c->external, c->running, c->paused} : TargetState{};
+  return c ? TargetState{true, c->external, c->running, c->paused, is_ssh_prefix(c->prefix)} : TargetState{};
 }
 
 pid_t Fleet::pid_of(const std::string& target) {

@@ -30,6 +30,10 @@ HostPlacement::HostPlacement(const config::HostsConfig& hc, int domain, spdlog::
       log_.info("removed {} network namespaces left by earlier runs", stale);
     net_ = std::make_unique<NamespaceNet>(hc.count, static_cast<int>(getpid()));
     hosts_ = net_->hosts();
+    if (hc.ssh) {
+      ssh_ = std::make_unique<SshServers>(hosts_, static_cast<int>(getpid()));
+      log_.info("{} ssh servers listening; every process starts over ssh", hosts_.size());
+    }
     launcher_address_ = net_->bridge_address();
     return;
   }
@@ -91,6 +95,9 @@ bool HostPlacement::move_off_lost(Child& c) const {
 void HostPlacement::lose(int h) {
   Host& host = hosts_.at(static_cast<std::size_t>(h));
   if (net_ && !net_->set_link(h, false)) log_.error("fault: host {}: its link could not be cut", host.name);
+  // Over ssh the launcher's kills end only its ssh clients; the machine's own processes (all but
+  // its ssh server, which a healed host needs) end with it.
+  if (ssh_) net_->kill_processes(h, ssh_->server(h));
   host.lost = host.partitioned = true;
 }
 
@@ -119,6 +126,7 @@ nlohmann::json HostPlacement::record(const std::vector<Child>& kids,
     nlohmann::json h = {{"name", host(i).name},
                         {"address", host(i).address},
                         {"kind", net_ ? "namespace" : "machine"},
+                        {"started_by", host(i).prefix.empty() ? "" : host(i).prefix.front()},
                         {"processes", procs},
                         {"discovery_server", servers.at(static_cast<std::size_t>(i))},
                         {"bytes_sent", nullptr},

@@ -14,6 +14,7 @@
 #include "config/scenario.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/hosts.hpp"
+#include "deploy/fleet/ssh_servers.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -76,6 +77,7 @@ class HostPlacement {
   int domain_;
   spdlog::logger& log_;
   std::unique_ptr<NamespaceNet> net_;
+  std::unique_ptr<SshServers> ssh_;  ///< hosts.ssh: a server per namespace host (ended before net_ goes)
   std::vector<Host> hosts_;
   std::string launcher_address_;
 };

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -48,15 +49,33 @@ void ip_or_throw(const std::vector<std::string>& args) {
 }
 
 /// Removes the namespaces and the bridge of a tag (what is missing is skipped).
+/// The pids of the processes in a namespace.
+std::vector<pid_t> netns_pids(const std::string& netns) {
+  std::string out;
+  run_tool({"ip", "netns", "pids", netns}, &out);
+  std::istringstream in(out);
+  std::vector<pid_t> pids;
+  for (long pid = 0; in >> pid;)
+    if (pid > 1) pids.push_back(static_cast<pid_t>(pid));
+  return pids;
+}
+}  // namespace
+
+std::string ssh_dir(const std::string& tag) { return std::string(kLockDir) + "/" + tag + "-ssh"; }
+
+namespace {
 int remove_tag(const std::string& tag) {
   int removed = 0;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(kNetnsDir, ec)) {
     const std::string n = e.path().filename().string();
     if (n.rfind(std::string(kNetnsPrefix) + tag + "-h", 0) != 0) continue;
+    // What still runs in it is this tag's: its ssh server, or a process of a launcher killed.
+    for (const pid_t pid : netns_pids(n)) ::kill(pid, SIGKILL);
     removed += run_tool({"ip", "netns", "delete", n}) == 0;  // its veth pair goes with it
   }
   run_tool({"ip", "link", "delete", "mbr" + tag});
+  fs::remove_all(ssh_dir(tag), ec);
   return removed;
 }
 
@@ -99,13 +118,27 @@ int run_tool(const std::vector<std::string>& argv, std::string* output) {
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
+std::string shell_quote(const std::string& word) {
+  std::string q = "'";
+  for (char ch : word) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return q + "'";
+}
+
+bool is_ssh_prefix(const std::vector<std::string>& prefix) {
+  return !prefix.empty() && fs::path(prefix[0]).filename() == "ssh";
+}
+
 std::vector<std::string> host_argv(const std::vector<std::string>& prefix, const Environment& env,
                                    const std::string& binary, const std::vector<std::string>& args) {
+  std::vector<std::string> command = {"env"};
+  for (const auto& [k, v] : env) command.push_back(k + "=" + v);
+  command.push_back(binary);
+  command.insert(command.end(), args.begin(), args.end());
+  // ssh joins its words with blanks for the remote shell: each is quoted to arrive as it is.
+  if (is_ssh_prefix(prefix))
+    for (auto& w : command) w = shell_quote(w);
   std::vector<std::string> out = prefix;
-  out.push_back("env");
-  for (const auto& [k, v] : env) out.push_back(k + "=" + v);
-  out.push_back(binary);
-  out.insert(out.end(), args.begin(), args.end());
+  out.insert(out.end(), command.begin(), command.end());
   return out;
 }
 
@@ -193,6 +226,11 @@ void NamespaceNet::remove() {
     ::close(lock_fd_);
     lock_fd_ = -1;
   }
+}
+
+void NamespaceNet::kill_processes(int host, pid_t spare) {
+  for (const pid_t pid : netns_pids(hosts_.at(static_cast<std::size_t>(host)).netns))
+    if (pid != spare) ::kill(pid, SIGKILL);
 }
 
 bool NamespaceNet::set_link(int host, bool up) {

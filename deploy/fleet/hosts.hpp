@@ -43,6 +43,13 @@ struct LinkBytes {
 std::vector<std::string> host_argv(const std::vector<std::string>& prefix, const Environment& env,
                                    const std::string& binary, const std::vector<std::string>& args);
 
+/// `word` in single quotes for a POSIX shell (a ' inside as '\'').
+std::string shell_quote(const std::string& word);
+/// The prefix starts the process over ssh: the words after it are quoted for the remote shell.
+bool is_ssh_prefix(const std::vector<std::string>& prefix);
+/// The folder of a run's ssh rehearsal keys and configuration (ssh_servers.hpp).
+std::string ssh_dir(const std::string& tag);
+
 /// A command prefix from text, split at blanks ("ssh -o BatchMode=yes pi@10.0.0.7").
 std::vector<std::string> split_command(const std::string& text);
 
@@ -73,6 +80,8 @@ class NamespaceNet {
   const std::string& bridge_address() const { return bridge_address_; }
   /// Cuts the host's link or links it again (false: the bridge did not take the change).
   bool set_link(int host, bool up);
+  /// Ends (SIGKILL) every process in the host's namespace but `spare`.
+  void kill_processes(int host, pid_t spare);
   /// Bytes the host sent and received on its link so far.
   LinkBytes bytes(int host) const;
 

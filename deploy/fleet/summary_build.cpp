@@ -127,7 +127,10 @@ nlohmann::json processes_json(const std::vector<Child>& kids) {
                      {"starts", c.starts},
                      {"external", c.external}});
   for (std::size_t i = 0; i < kids.size(); ++i)
-    if (kids[i].host >= 0) procs[i]["host"] = config::host_name(kids[i].host);
+    if (kids[i].host >= 0) {
+      procs[i]["host"] = config::host_name(kids[i].host);
+      procs[i]["started_by"] = kids[i].prefix.empty() ? "" : kids[i].prefix.front();
+    }
   return procs;
 }
 

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 #include <pwd.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -317,6 +320,84 @@ TEST_F(Hosts, NothingIsLeftAfterTheLauncherIsKilled) {
                            tmp.path() + "/next", 300, next);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(network_left(pid));
+  if (network_left(pid)) remove_network(pid);
+}
+
+/// Why the ssh rehearsal cannot run here ("" : it can).
+std::string ssh_problem() {
+  if (access("/usr/sbin/sshd", X_OK) != 0) return "no /usr/sbin/sshd (Debian: openssh-server)";
+  if (std::system("command -v ssh >/dev/null 2>&1 && command -v ssh-keygen >/dev/null 2>&1") != 0)
+    return "no ssh or ssh-keygen (Debian: openssh-client)";
+  return "";
+}
+
+/// True while a process runs whose command line names the ssh folder of this launcher's run.
+bool ssh_server_left(pid_t launcher) {
+  const std::string dir = "/run/maptr-hosts/" + std::to_string(launcher) + "-ssh";
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/proc", ec)) {
+    std::ifstream f(e.path() / "cmdline");
+    std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (cmd.find(dir) != std::string::npos) return true;
+  }
+  return std::filesystem::exists(dir);
+}
+
+TEST_F(Hosts, OverSshEveryProcessStartsBySshAndTheTraceIsTheOneHostTrace) {
+  if (const auto p = ssh_problem(); !p.empty()) GTEST_SKIP() << p;
+  TempDir tmp;
+  pid_t pid = 0;
+  const auto one =
+      run_cli(run_args(tmp.path() + "/one", {"--agents", "16", "--duration", "8"}), tmp.path() + "/one", 300);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const auto ssh =
+      run_hosts(run_args(tmp.path() + "/ssh", {"--agents", "16", "--duration", "8", "--hosts", "3", "--ssh"}),
+                tmp.path() + "/ssh", 300, pid);
+  ASSERT_EQ(ssh.exit_code, 0) << ssh.output;
+  EXPECT_EQ(ssh.summary["status"], "ok");
+  EXPECT_EQ(ssh.summary["trace_sha256"], one.summary["trace_sha256"]);
+  ASSERT_EQ(ssh.summary["processes"].size(), 20u);
+  for (const auto& p : ssh.summary["processes"]) EXPECT_EQ(p.value("started_by", ""), "ssh") << p.dump();
+  for (const auto& h : ssh.summary["hosts"]) EXPECT_EQ(h.value("started_by", ""), "ssh") << h.dump();
+  EXPECT_FALSE(ssh_server_left(pid)) << "an ssh server, key or configuration of the run is left";
+  EXPECT_FALSE(network_left(pid));
+}
+
+TEST_F(Hosts, OverSshTheControllersOfALostHostFailOver) {
+  if (const auto p = ssh_problem(); !p.empty()) GTEST_SKIP() << p;
+  TempDir tmp;
+  pid_t pid = 0;
+  const std::string out = tmp.path() + "/run";
+  const auto r = run_hosts(
+      run_args(out, {"--agents", "16", "--duration", "20", "--hosts", "3", "--ssh", "--kill-host", "h1@8"}),
+      out, 600, pid);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.summary["status"], "ok") << at(r.summary, {"failovers"});
+  ASSERT_FALSE(r.summary["failovers"].empty());
+  for (const auto& f : r.summary["failovers"]) {
+    EXPECT_EQ(f["from"], "h1") << f.dump();
+    EXPECT_TRUE(f["running_at_s"].is_number()) << f.dump();
+  }
+  EXPECT_FALSE(ssh_server_left(pid));
+}
+
+TEST_F(Hosts, OverSshNothingIsLeftAfterTheLauncherIsKilled) {
+  if (const auto p = ssh_problem(); !p.empty()) GTEST_SKIP() << p;
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  const pid_t pid =
+      start_cli(run_args(out, {"--hosts", "3", "--ssh", "--realtime", "--duration", "120"}), out + ".out");
+  ASSERT_TRUE(wait_for([&] { return read_json(out + "/fleet.json").contains("processes"); }, 120));
+  ASSERT_TRUE(ssh_server_left(pid));
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  // The servers end with the launcher; the remote processes with their ssh.
+  pid_t next = 0;
+  const auto r = run_hosts(run_args(tmp.path() + "/next", {"--hosts", "2", "--duration", "1"}),
+                           tmp.path() + "/next", 300, next);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(network_left(pid));
+  EXPECT_FALSE(ssh_server_left(pid));
   if (network_left(pid)) remove_network(pid);
 }
 

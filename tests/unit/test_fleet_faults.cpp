@@ -139,6 +139,16 @@ TEST(FleetFaultExecution, EachFaultActsOnItsTargetThroughTheRuleAndIsRecorded) {
   EXPECT_TRUE(r[3].contains("skipped")) << r[3].dump();
 }
 
+TEST(FleetFaultSchedule, AProcessStartedOverSshIsKilledButNeverPaused) {
+  TargetState remote{true, false, true, false, true};
+  EXPECT_EQ(decide_fault({"L1", "kill", 1.0}, remote).kind, FaultAction::kKill);
+  const FaultAction p = decide_fault({"L1", "pause", 1.0}, remote);
+  EXPECT_EQ(p.kind, FaultAction::kSkip);
+  EXPECT_NE(p.skipped.find("ssh"), std::string::npos) << p.skipped;
+  remote.running = false;
+  EXPECT_EQ(decide_fault({"L1", "restart", 2.0}, remote).kind, FaultAction::kRestart);
+}
+
 TEST(FleetFaultExecution, APauseAndItsResumeReachTheTarget) {
   StubTargets t;
   t.state["discovery"] = {true, false, true, false};

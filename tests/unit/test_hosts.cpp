@@ -63,13 +63,34 @@ TEST(HostPlacement, RulesOverrideAndBadRulesAreNamed) {
 }
 
 TEST(HostCommand, PrefixThenEnvThenTheProcess) {
-  const auto argv = maptr::deploy::fleet::host_argv({"ssh", "pi@board1"}, {{"MAPTR_DOMAIN", "7"}},
-                                                    "/opt/maptr/bin/maptr_agent", {"--id", "L0"});
+  const auto argv =
+      maptr::deploy::fleet::host_argv({"ip", "netns", "exec", "maptr-7-h1"}, {{"MAPTR_DOMAIN", "7"}},
+                                      "/opt/maptr/bin/maptr_agent", {"--id", "L0"});
   const std::vector<std::string> want = {
-      "ssh", "pi@board1", "env", "MAPTR_DOMAIN=7", "/opt/maptr/bin/maptr_agent", "--id", "L0"};
+      "ip",   "netns", "exec", "maptr-7-h1", "env", "MAPTR_DOMAIN=7", "/opt/maptr/bin/maptr_agent",
+      "--id", "L0"};
   EXPECT_EQ(argv, want);
   EXPECT_EQ(maptr::deploy::fleet::split_command("  ssh  -o BatchMode=yes pi@b1 "),
             (std::vector<std::string>{"ssh", "-o", "BatchMode=yes", "pi@b1"}));
+}
+
+TEST(HostCommand, OverSshEveryWordArrivesAsItIsAtTheRemoteShell) {
+  // ssh joins the words after the destination with blanks for the remote shell: each is quoted.
+  const auto argv = maptr::deploy::fleet::host_argv({"/usr/bin/ssh", "pi@board1"}, {{"K", "a b'c"}},
+                                                    "/opt/maptr/bin/maptr_agent", {"--id", "L0;x"});
+  const std::vector<std::string> want = {
+      "/usr/bin/ssh", "pi@board1", "'env'", "'K=a b'\\''c'", "'/opt/maptr/bin/maptr_agent'",
+      "'--id'",       "'L0;x'"};
+  EXPECT_EQ(argv, want);
+  std::string joined = "printf '%s|'";
+  for (std::size_t i = 2; i < argv.size(); ++i) joined += " " + argv[i];
+  FILE* sh = popen(joined.c_str(), "r");
+  ASSERT_NE(sh, nullptr);
+  char buf[256] = {};
+  const std::size_t n = fread(buf, 1, sizeof buf - 1, sh);
+  pclose(sh);
+  EXPECT_EQ(std::string(buf, n), "env|K=a b'c|/opt/maptr/bin/maptr_agent|--id|L0;x|")
+      << "what a shell reads back";
 }
 
 TEST(HostNetwork, SubnetIsPrivateAndDiffersBetweenTags) {

@@ -1,0 +1,138 @@
+#include "deploy/fleet/ssh_servers.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+namespace maptr::deploy::fleet {
+
+namespace fs = std::filesystem;
+
+namespace {
+constexpr const char* kSshd = "/usr/sbin/sshd";
+constexpr int kPort = 22;
+constexpr auto kListenWait = std::chrono::seconds(10);
+
+std::string first_two_words(const std::string& path) {
+  std::ifstream in(path);
+  std::string type, key;
+  in >> type >> key;
+  return type + " " + key;
+}
+
+bool accepts(const std::string& address) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(kPort);
+  ::inet_pton(AF_INET, address.c_str(), &a.sin_addr);
+  const bool ok = ::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+  ::close(fd);
+  return ok;
+}
+
+/// Starts `argv` with stdout and stderr into `log`; its pid.
+pid_t start(const std::vector<std::string>& argv, const std::string& log) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a launcher killed takes its servers with it
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    std::vector<char*> a;
+    for (const auto& s : argv) a.push_back(const_cast<char*>(s.c_str()));
+    a.push_back(nullptr);
+    ::execvp(a[0], a.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+}  // namespace
+
+std::string ssh_rehearsal_problem() {
+  if (::access(kSshd, X_OK) != 0) return std::string(kSshd) + " is missing (Debian: openssh-server)";
+  for (const char* tool : {"ssh", "ssh-keygen"})
+    if (run_tool({"sh", "-c", std::string("command -v ") + tool}) != 0)
+      return std::string(tool) + " is missing (Debian: openssh-client)";
+  return "";
+}
+
+SshServers::SshServers(std::vector<Host>& hosts, int tag) : dir_(ssh_dir(std::to_string(tag))) {
+  if (const std::string p = ssh_rehearsal_problem(); !p.empty()) throw std::runtime_error("--ssh: " + p);
+  fs::remove_all(dir_);
+  fs::create_directories(dir_);
+  ::chmod(dir_.c_str(), 0700);
+  fs::create_directories("/run/sshd");  // the server's privilege separation folder
+  for (const char* key : {"client", "host"})
+    if (run_tool({"ssh-keygen", "-q", "-t", "ed25519", "-N", "", "-C", "maptr", "-f", dir_ + "/" + key}) !=
+        0) {
+      remove();
+      throw std::runtime_error("--ssh: ssh-keygen could not make a key in " + dir_);
+    }
+  fs::copy_file(dir_ + "/client.pub", dir_ + "/authorized_keys");
+  std::ofstream known(dir_ + "/known_hosts");
+  std::ofstream conf(dir_ + "/sshd_config");
+  conf << "Port " << kPort << "\nHostKey " << dir_ << "/host\nAuthorizedKeysFile " << dir_
+       << "/authorized_keys\nPermitRootLogin prohibit-password\nPasswordAuthentication no\n"
+          "KbdInteractiveAuthentication no\nUsePAM no\nStrictModes no\nPidFile none\nPrintMotd no\n"
+          "MaxStartups 1000:30:2000\nMaxSessions 1000\n";
+  conf.close();
+  const std::string host_key = first_two_words(dir_ + "/host.pub");
+  for (auto& h : hosts) {
+    known << h.address << " " << host_key << "\n";
+    servers_.push_back(start({"ip", "netns", "exec", h.netns, kSshd, "-D", "-e", "-f", dir_ + "/sshd_config",
+                              "-o", "ListenAddress=" + h.address},
+                             dir_ + "/sshd-" + h.name + ".log"));
+    h.prefix = {"ssh",
+                "-tt",
+                "-i",
+                dir_ + "/client",
+                "-o",
+                "BatchMode=yes",
+                "-o",
+                "UserKnownHostsFile=" + dir_ + "/known_hosts",
+                "-o",
+                "StrictHostKeyChecking=yes",
+                "-o",
+                "LogLevel=ERROR",
+                "root@" + h.address};
+  }
+  known.close();
+  const auto deadline = std::chrono::steady_clock::now() + kListenWait;
+  for (const auto& h : hosts)
+    while (!accepts(h.address)) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        remove();
+        throw std::runtime_error("--ssh: the ssh server of " + h.name + " did not listen on " + h.address +
+                                 ":22 within 10 s");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+}
+
+SshServers::~SshServers() { remove(); }
+
+void SshServers::remove() {
+  for (const pid_t pid : servers_) {
+    if (pid <= 0) continue;
+    ::kill(pid, SIGTERM);
+    ::waitpid(pid, nullptr, 0);
+  }
+  servers_.clear();
+  std::error_code ec;
+  fs::remove_all(dir_, ec);
+}
+
+}  // namespace maptr::deploy::fleet
