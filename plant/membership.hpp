@@ -85,6 +85,12 @@ class Membership {
   /// A writer of `role`'s topic lost its liveliness: the member whose current writer it is dies
   /// (unless the launcher paused it or it is rejoining: a lease that ran out during a pause).
   void on_liveliness_lost(Role role, const WriterId& writer);
+  /// Whether an answer of `id` on `writer` is its own: its writer is not known yet (none since
+  /// its last start), or it is this one.
+  bool takes(const MemberId& id, const WriterId& writer) const {
+    const Member& m = at(id);
+    return !m.writer_known || m.writer == writer;
+  }
   /// member answered the current tick on `writer`: live again (a rejoin is recorded once).
   void on_answer(const MemberId& id, const WriterId& writer);
   /// The barrier's deadline passed: every live member that has not answered is dead; returns

@@ -66,6 +66,17 @@ bool PlantLoop::once(Once o, const char* what, int side, int index, long long k)
   return false;
 }
 
+bool PlantLoop::one_writer(const MemberId& id, const Handle& h, long long k) {
+  // A controller has one writer between two starts: the one of its first answer after the
+  // launcher announced its start. A stranded copy (its host cut off while the launcher started
+  // it elsewhere) that is heard again after the heal is not it.
+  if (membership_.takes(id, writer_id(h))) return true;
+  if (reject("stale copy") <= kRejectsLogged)
+    log_.warn("rejected {}'s sample for tick {} from a writer other than its current one (an earlier copy)",
+              member_name(id), k);
+  return false;
+}
+
 uint64_t PlantLoop::reject(const char* kind) {
   ++kinds_[kind];
   return ++rejected_;
@@ -95,6 +106,7 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
     const bool own = sent_by(h, comm::group_participant_id(g.side()));
     if (!admit(check(g, lim, k), own, g.tick(), k, "group status", g.side(), 0)) continue;
     const int s = g.side();
+    if (!one_writer({Role::kGroup, s, 0}, h, k)) continue;
     if (!once(once_group_[s].see(g, k), "group status", s, 0, k)) continue;
     ++taken_[1];
     membership_.on_answer({Role::kGroup, s, 0}, writer_id(h));
@@ -119,6 +131,7 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
   for (auto& [c, h] : commands) {
     const bool own = sent_by(h, comm::kCentralParticipantId);
     if (!admit(check(c, lim, k), own, c.tick(), k, "central command", 0, 0)) continue;
+    if (!one_writer({Role::kCentral, 0, 0}, h, k)) continue;
     if (!once(once_central_.see(c, k), "central command", 0, 0, k)) continue;
     ++taken_[2];
     membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));

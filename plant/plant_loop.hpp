@@ -172,6 +172,8 @@ class PlantLoop {
   /// Counts a dropped sample of `kind` (malformed, forged, stale, conflicting, ...); returns
   /// how many the plant has dropped.
   uint64_t reject(const char* kind);
+  /// A controller's sample from its one writer since its last start (else rejected and counted).
+  bool one_writer(const MemberId& id, const Handle& h, long long k);
   /// Control samples: taken only from the launcher and well-formed; the others counted.
   std::vector<msg::Control> take_controls();
   std::map<std::string, uint64_t> kinds_;  ///< dropped samples by kind (plant.json rejected_by_kind)

@@ -39,6 +39,7 @@ struct Child {
   bool awaiting_ready = false;      ///< restarted: MEMBER_STARTED goes out once it reports ready
   int host = -1;                    ///< fleet on several hosts: the host it runs on (-1: this machine)
   std::vector<std::string> prefix;  ///< command prefix that starts it on its host ("": directly)
+  pid_t remote_pid = -1;            ///< started over ssh: its pid on its machine (from its NodeReady)
   std::map<std::string, std::string> host_env;  ///< environment its host adds (MAPTR_INTERFACE)
 };
 

@@ -329,6 +329,7 @@ void Fleet::end() {
   wait_all(kids_, cfg_.end_term_s, reap_expected);
   signal_all(kids_, SIGKILL);
   wait_all(kids_, cfg_.end_kill_s, reap_expected);
+  if (on_hosts()) end_stranded(-1);  // a partition never healed
   if (zygote_) log_.info("the zygote forked {} agents ({} requests failed)", zygote_->forked(), zygote_->failed());
   zygote_.reset();
   if (recorder_) recorder_->stop(rec_, log_);

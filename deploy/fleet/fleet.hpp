@@ -118,6 +118,14 @@ class Fleet : private FaultTargets {
   /// Starts again on a surviving host each controller of a lost host once it is reaped
   /// (hosts.failover); returns their names.
   std::vector<std::string> fail_over();
+  /// partition: the host's controllers (central, groups) are left to run on there (stranded) and
+  /// fail over to a surviving host.
+  void strand_controllers(int h, double at_s);
+  /// heal of host h (-1: every host, at the run's end): SIGKILL to its stranded copies.
+  void end_stranded(int h);
+  /// After the heal of host h: the stranded copies started over ssh end on their host (kill -9 over
+  /// ssh, with the pid their NodeReady gave).
+  void end_stranded_remote(int h);
   /// A failed-over controller `c` is ready again: its failover ends at the plant's time.
   void failed_over(const Child& c);
   bool on_hosts() const { return hosts_ != nullptr; }
@@ -135,6 +143,14 @@ class Fleet : private FaultTargets {
   std::vector<std::unique_ptr<DiscoveryServer>> ds_;  ///< one, one per host, or none (a secure domain)
   std::unique_ptr<HostPlacement> hosts_;              ///< none: every process on this machine
   std::vector<Failover> failovers_;                   ///< controllers of lost hosts started elsewhere
+  struct Stranded {
+    int host;
+    pid_t pid;
+    std::string name;
+    pid_t remote_pid;                 ///< over ssh: its pid on its host (-1: unknown)
+    std::vector<std::string> prefix;  ///< over ssh: how to reach its host
+  };
+  std::vector<Stranded> stranded_;  ///< the old copies of controllers failed over from a cut-off host
   std::unique_ptr<LauncherParticipant> domain_;       ///< the launcher's participant
   std::unique_ptr<FleetRecorder> recorder_;  ///< run.mcap (records nothing when the scenario says none)
   std::vector<Child> kids_;

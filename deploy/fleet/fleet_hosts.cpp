@@ -53,11 +53,14 @@ std::vector<std::string> Fleet::apply_host_fault(const config::FaultSpec& f, dou
       for (const auto& c : kids_)
         if (c.host == h && c.running && &c != &kids_.front()) publish_member(c, msg::MEMBER_DIED);
       log_.warn("fault: host {} cut off at t={:.2f} s", host.name, at_s);
+      if (sc_.hosts.failover) strand_controllers(h, at_s);
     } else {
       a = {FaultAction::kSkip, "the bridge did not take the cut (bridge link set ... state 0)"};
     }
   } else if (f.action == "heal" && host.partitioned) {
+    end_stranded(h);  // before the link is back, the copies this machine can reach
     if (hosts_->heal(h)) ds.release();
+    end_stranded_remote(h);  // then those on the host, over ssh, before the plant goes on
     log_.warn("fault: host {} linked again at t={:.2f} s", host.name, at_s);
   } else {
     a = {FaultAction::kSkip, hosts_->namespaces() ? "host not in a state for this action"
@@ -75,9 +78,9 @@ std::vector<std::string> Fleet::fail_over() {
     if (!f.to.empty() || !f.problem.empty()) continue;
     Child* c = find(f.name);
     if (!c || c->running) continue;  // not reaped yet
-    if (!hosts_->move_off_lost(*c)) {
+    if (!hosts_->move_off_unreachable(*c)) {
       f.problem = "no host left that is neither lost nor cut off";
-      log_.error("failover: {} of lost host {}: {}", f.name, f.from, f.problem);
+      log_.error("failover: {} of host {}: {}", f.name, f.from, f.problem);
       continue;
     }
     spawn_child(*c);
@@ -85,10 +88,58 @@ std::vector<std::string> Fleet::fail_over() {
     f.to = hosts_->host(c->host).name;
     f.started = Clock::now();
     started.push_back(f.name);
-    log_.warn("failover: {} of lost host {} started on {} (pid {}) at t={:.2f} s", f.name, f.from, f.to,
-              c->pid, clock_.state().t);
+    log_.warn("failover: {} of host {} started on {} (pid {}) at t={:.2f} s", f.name, f.from, f.to, c->pid,
+              clock_.state().t);
   }
   return started;
+}
+
+void Fleet::strand_controllers(int h, double at_s) {
+  // A cut-off host's controllers are out of the launcher's reach as a lost one's: the plant has
+  // stopped waiting for them at this tick, and new copies start on a surviving host. The old
+  // copies run on where they are, stranded, until the heal lets the launcher end them.
+  for (auto& c : kids_) {
+    const bool controller = c.kind == ChildKind::kCentral || c.kind == ChildKind::kGroup;
+    if (c.host != h || !c.running || c.external || !controller) continue;
+    stranded_.push_back({h, c.pid, c.name, is_ssh_prefix(c.prefix) ? c.remote_pid : -1, c.prefix});
+    c.running = false;
+    failovers_.push_back({c.name, hosts_->host(h).name, "", at_s});
+  }
+}
+
+void Fleet::end_stranded(int h) {
+  // Before the link is back: a stranded copy never meets the fleet again (and the plant would
+  // take its samples only from the copy started last, its current participant id).
+  for (auto it = stranded_.begin(); it != stranded_.end();) {
+    if (h >= 0 && it->host != h) {
+      ++it;
+      continue;
+    }
+    ::kill(it->pid, SIGKILL);  // over ssh: its client, which does not reach its host yet
+    log_.warn("{}: the stranded copy (pid {}) on {} ended", it->name, it->pid, hosts_->host(it->host).name);
+    if (it->remote_pid > 0 && h >= 0) {
+      it->pid = -1;  // its host's own process is ended once the link is back
+      ++it;
+      continue;
+    }
+    it = stranded_.erase(it);
+  }
+}
+
+void Fleet::end_stranded_remote(int h) {
+  for (auto it = stranded_.begin(); it != stranded_.end();) {
+    if (it->host != h || it->remote_pid <= 0) {
+      ++it;
+      continue;
+    }
+    std::vector<std::string> argv = it->prefix;
+    argv.insert(argv.end(), {"kill", "-9", std::to_string(it->remote_pid)});
+    const int rc = run_tool(argv);
+    log_.warn(
+        "{}: its stranded copy on {} (pid {} there) {}", it->name, hosts_->host(h).name, it->remote_pid,
+        rc == 0 ? "ended over ssh" : "was gone already or could not be reached (" + std::to_string(rc) + ")");
+    it = stranded_.erase(it);
+  }
 }
 
 void Fleet::failed_over(const Child& c) {

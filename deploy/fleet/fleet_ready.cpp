@@ -39,6 +39,7 @@ ReadyClaim Fleet::claim_of(const msg::NodeReady& r, const eprosima::fastrtps::rt
   // is what says it is the launcher's.
   const bool remote = c->host >= 0 && on_hosts() && (is_ssh_prefix(c->prefix) || !hosts_->namespaces());
   claim.pid_matches = c->running && (remote ? claim.from_current_participant : pid == c->pid);
+  if (remote && claim.pid_matches) c->remote_pid = pid;
   // A secure process's earlier start has the same certificate: its old pid tells it apart.
   if (secure() && !c->external && claim.from_current_participant && !claim.pid_matches)
     claim.from_earlier_participant = true, claim.from_current_participant = false;

@@ -93,7 +93,7 @@ void Fleet::kill_target(const std::string& target) {
 
 void Fleet::restart_target(const std::string& target) {
   Child& c = *find(target);
-  if (on_hosts()) hosts_->move_off_lost(c);
+  if (on_hosts()) hosts_->move_off_unreachable(c);
   spawn_child(c);
   c.awaiting_ready = true;
 }

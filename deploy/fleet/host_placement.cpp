@@ -80,12 +80,13 @@ void HostPlacement::place(std::vector<Child>& kids) const {
   for (std::size_t i = 0; i < kids.size(); ++i) put_on(kids[i], host_template(where[i]));
 }
 
-bool HostPlacement::move_off_lost(Child& c) const {
-  if (c.host < 0 || !host(c.host).lost) return false;
+bool HostPlacement::move_off_unreachable(Child& c) const {
+  if (c.host < 0 || !(host(c.host).lost || host(c.host).partitioned)) return false;
   for (int k = 1; k < count(); ++k) {
     const int h = (c.host + k) % count();
     if (host(h).lost || host(h).partitioned) continue;
-    log_.info("{}: its host {} is lost; it starts on {}", c.name, config::host_name(c.host), host(h).name);
+    log_.info("{}: its host {} is {}; it starts on {}", c.name, config::host_name(c.host),
+              host(c.host).lost ? "lost" : "cut off", host(h).name);
     put_on(c, host_template(h));
     return true;
   }

@@ -56,9 +56,9 @@ class HostPlacement {
   Child host_template(int h) const;
   /// Puts each child on its host, by the scenario's placement.
   void place(std::vector<Child>& kids) const;
-  /// A child whose host is lost moves to the next host that is neither lost nor cut off (false:
-  /// it stays, as no host is left or its own is not lost).
-  bool move_off_lost(Child& c) const;
+  /// A child whose host is lost or cut off moves to the next host that is neither (false: it
+  /// stays, as no host is left or its own is reachable).
+  bool move_off_unreachable(Child& c) const;
 
   /// kill-host: the host's link is cut and it counts as lost and cut off.
   void lose(int h);

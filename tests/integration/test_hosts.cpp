@@ -401,6 +401,48 @@ TEST_F(Hosts, OverSshNothingIsLeftAfterTheLauncherIsKilled) {
   if (network_left(pid)) remove_network(pid);
 }
 
+/// group-L on h1 with central and group-R; h1 cut off at 8 s for 10 s, then healed.
+void partition_of_the_controllers_host(bool ssh) {
+  TempDir tmp;
+  pid_t pid = 0;
+  const std::string out = tmp.path() + "/run";
+  std::vector<std::string> args = {"--agents", "16",         "--duration",  "30",   "--hosts", "3",
+                                   "--place",  "group-L=h1", "--partition", "h1@8", "--heal",  "h1@18"};
+  if (ssh) args.push_back("--ssh");
+  const auto r = run_hosts(run_args(out, args), out, 600, pid);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto& s = r.summary;
+  EXPECT_EQ(s["status"], "ok") << at(s, {"failovers"});
+  std::set<std::string> moved;
+  for (const auto& f : s["failovers"]) {
+    moved.insert(f["name"].get<std::string>());
+    EXPECT_EQ(f["from"], "h1") << f.dump();
+    EXPECT_DOUBLE_EQ(f["detected_at_s"].get<double>(), 8.0) << f.dump();
+    EXPECT_TRUE(f["running_at_s"].is_number()) << f.dump();
+  }
+  EXPECT_EQ(moved, (std::set<std::string>{"central", "group-L", "group-R"}));
+  // One group-L at the end: the copy started on a reachable host, which ended cleanly.
+  for (const auto& p : s["processes"])
+    if (p["name"] == "group-L") {
+      EXPECT_NE(p["host"], "h1") << p.dump();
+      EXPECT_EQ(p["exit_code"], 0) << p.dump();
+    }
+  // The ledgers go on from the ones before the cut: never a step back.
+  for (const char* side : {"L", "R"})
+    EXPECT_EQ(s["plant"]["group_wear"][side]["regressions"], 0) << at(s, {"plant", "group_wear"});
+  EXPECT_FALSE(network_left(pid));
+  EXPECT_FALSE(ssh_server_left(pid));
+}
+
+TEST_F(Hosts, APartitionOfTheControllersHostFailsThemOverAndTheHealLeavesOneOfEach) {
+  partition_of_the_controllers_host(false);
+}
+
+TEST_F(Hosts, OverSshAPartitionOfTheControllersHostLeavesOneOfEachAfterTheHeal) {
+  if (const auto p = ssh_problem(); !p.empty()) GTEST_SKIP() << p;
+  partition_of_the_controllers_host(true);
+}
+
 TEST(HostsWithoutRoot, ExitTwoAndSayWhy) {
   TempDir tmp;
   const passwd* nobody = getpwnam("nobody");

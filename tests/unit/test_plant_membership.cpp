@@ -225,3 +225,22 @@ TEST_F(PlantMembership, ResumeWithoutPauseChangesNothingAndAKillEndsAPause) {
   ASSERT_EQ(m.records().size(), 2u);
   EXPECT_EQ(m.records()[1].event, "died (launcher)");
 }
+
+TEST_F(PlantMembership, AControllerHasOneWriterBetweenTwoStarts) {
+  // group-L answers on writer 1; a copy of it on writer 2 (stranded on a host cut off, heard
+  // again after the heal) is not taken; after the launcher announces a start, the first answer's
+  // writer is the one.
+  m.begin_tick();
+  EXPECT_TRUE(m.takes(kGroupL, writer(1))) << "nothing heard yet: any writer of group-L";
+  m.on_answer(kGroupL, writer(1));
+  EXPECT_TRUE(m.takes(kGroupL, writer(1)));
+  EXPECT_FALSE(m.takes(kGroupL, writer(2)));
+  ASSERT_TRUE(m.on_launcher(1, LauncherEvent::kDied, "group-L"));
+  EXPECT_FALSE(m.takes(kGroupL, writer(2))) << "a death alone names no new writer";
+  ASSERT_TRUE(m.on_launcher(2, LauncherEvent::kStarted, "group-L"));
+  m.begin_tick();
+  EXPECT_TRUE(m.takes(kGroupL, writer(3)));
+  m.on_answer(kGroupL, writer(3));
+  EXPECT_FALSE(m.takes(kGroupL, writer(1))) << "the earlier copy";
+  EXPECT_TRUE(m.takes(kGroupL, writer(3)));
+}
