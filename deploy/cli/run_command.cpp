@@ -266,6 +266,9 @@ int cmd_run(const RunArgs& a, const std::string& bin_dir) {
   nlohmann::json summary;
   try {
     summary = launch(o, *log);
+  } catch (const ScenarioError& e) {  // a host that cannot run the fleet: nothing started
+    std::cerr << "maptr: " << e.what() << "\n";
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return kExitFailed;

@@ -42,6 +42,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& a) {
   c->add_option("--out", a.o.out, "output folder (default runs/<date>-bench-<what>)");
   c->add_option("--domain", a.domain, "DDS domain id (default $MAPTR_DOMAIN or 0)")
       ->check(CLI::Range(0, kMaxDomain));
+  c->add_flag("--ssh", a.o.ssh,
+              "scale: the --hosts runs start every process over ssh (an ssh server per host)");
   c->add_option("--hosts", a.o.hosts, "scale: also run each size on N hosts (namespaces; needs root)")
       ->check(CLI::Range(2, 64));
   c->add_option("--modes", a.o.modes,
@@ -136,6 +138,10 @@ int cmd_bench(BenchArgs a, const std::string& bin_dir) {
     }
   } else if (a.o.what == "tick") {
     a.o.agents = {kTickBenchAgents};
+  }
+  if (a.o.ssh && a.o.hosts < 2) {
+    std::cerr << "maptr: bench --ssh: the ssh rehearsal needs --hosts N (2 or more)\n";
+    return 2;
   }
   if (a.o.hosts > 1)
     if (const std::string why = fleet::hosts_root_problem(); !why.empty()) {

@@ -8,6 +8,16 @@ namespace maptr::deploy::fleet {
 
 void Fleet::setup_hosts() {
   hosts_ = std::make_unique<HostPlacement>(sc_.hosts, o_.domain, log_);
+  // Every host must run the binaries at this machine's paths; nothing starts when one cannot.
+  std::vector<std::string> binaries;
+  for (const char* b : {"maptr_discovery", "maptr_plant", "maptr_central", "maptr_group", "maptr_agent"})
+    binaries.push_back(o_.bin_dir + "/" + b);
+  for (int i = 0; i < hosts_->count(); ++i)
+    if (const std::string missing = hosts_->missing_binary(i, binaries); !missing.empty())
+      throw config::ScenarioError(
+          "host " + hosts_->host(i).name + " (" + hosts_->host(i).address + "): " + missing +
+          ": missing or not executable there; every machine needs the binaries at this "
+          "machine's paths (README \"Real machines\")");
   dds_.interface_address = hosts_->launcher_address();
   // One discovery server per host; each server knows the others, each client its host's own.
   const std::string servers = hosts_->discovery_servers();

@@ -1,4 +1,5 @@
 // The run of a fleet: the plant's clock, commands, fault gates, deaths and restarts.
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 
@@ -155,7 +156,10 @@ void Fleet::open_gate(const msg::FaultGate& g) {
   int retries = 0;
   for (;;) {
     reap(false);
-    for (auto& name : fail_over()) restarted.push_back(name);
+    for (auto& name : fail_over()) {  // killed with its host, running again elsewhere
+      restarted.push_back(name);
+      killed.erase(std::remove(killed.begin(), killed.end(), name), killed.end());
+    }
     announce_restarted();
     if (!gate_pending(kids_, killed, restarted) || interrupted().load() || plant_done_) break;
     if (since(t0) > limit && retries < cfg_.restart_unready_retries && restart_unready(restarted)) {

@@ -65,6 +65,17 @@ Child HostPlacement::host_template(int h) const {
   return c;
 }
 
+std::string HostPlacement::missing_binary(int h, const std::vector<std::string>& binaries) const {
+  if (host(h).prefix.empty()) return "";
+  std::vector<std::string> args = {"-c", "for b; do test -x \"$b\" || { echo \"$b\"; exit 1; }; done", "sh"};
+  args.insert(args.end(), binaries.begin(), binaries.end());
+  std::string out;
+  if (run_tool(host_argv(host(h).prefix, {}, "sh", args), &out) == 0) return "";
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  const auto nl = out.rfind('\n');
+  return out.empty() ? "(the check could not run there)" : out.substr(nl == std::string::npos ? 0 : nl + 1);
+}
+
 namespace {
 void put_on(Child& c, const Child& t) {
   c.host = t.host;

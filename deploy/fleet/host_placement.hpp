@@ -54,6 +54,9 @@ class HostPlacement {
   /// The settings a process on host `h` gets from it: its host, command prefix, UDP interface
   /// and discovery server (its host's own; comm::DdsOptions::own_server says why).
   Child host_template(int h) const;
+  /// The first of `binaries` that host h cannot run (checked there, through its command prefix,
+  /// in one command), "" when it has them all or starts processes directly.
+  std::string missing_binary(int h, const std::vector<std::string>& binaries) const;
   /// Puts each child on its host, by the scenario's placement.
   void place(std::vector<Child>& kids) const;
   /// A child whose host is lost or cut off moves to the next host that is neither (false: it

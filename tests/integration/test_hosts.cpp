@@ -286,6 +286,10 @@ TEST_F(Hosts, TheControllersOfALostHostFailOverAndTheRunEndsOk) {
     EXPECT_DOUBLE_EQ(f["running_at_s"].get<double>(), 10.0) << f.dump();
     EXPECT_TRUE(rejoined(s, name)) << name << " did not rejoin the plant";
   }
+  // The gate waits for the new copies, not for the lost ones to end (they share their names).
+  std::ifstream log(out + "/logs/launcher.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("a killed process did not end"), std::string::npos) << "the gate waited out its limit";
 }
 
 TEST_F(Hosts, WithoutFailoverALostHostsControllersStayDeadAndTheRunSaysSo) {
@@ -441,6 +445,35 @@ TEST_F(Hosts, APartitionOfTheControllersHostFailsThemOverAndTheHealLeavesOneOfEa
 TEST_F(Hosts, OverSshAPartitionOfTheControllersHostLeavesOneOfEachAfterTheHeal) {
   if (const auto p = ssh_problem(); !p.empty()) GTEST_SKIP() << p;
   partition_of_the_controllers_host(true);
+}
+
+TEST_F(Hosts, AHostWithoutABinaryStopsTheRunBeforeAnythingStarts) {
+  // h1's command runs each process in a mount namespace of its own where maptr_agent is
+  // /dev/null (not executable): a machine without the agent's binary at this machine's path.
+  TempDir tmp;
+  const std::string agent = cli_bin_dir() + "/maptr_agent";
+  const std::string hide = tmp.path() + "/hide.sh";
+  write_file(hide, "#!/bin/sh\nexec unshare -m sh -c 'mount --bind /dev/null \"$0\" && exec \"$@\"' " +
+                       agent + " \"$@\"\n");
+  chmod(hide.c_str(), 0755);
+  const std::string scenario = tmp.path() + "/two.yaml";
+  write_file(scenario,
+             "name: hide\nduration_s: 5\nhosts:\n  launcher_address: 127.0.0.1\n  machines:\n"
+             "    - {address: 127.0.0.1, command: \"\"}\n    - {address: 127.0.0.2, command: \"" +
+                 hide + "\"}\n");
+  const std::string out = tmp.path() + "/run";
+  const auto r = run_cli(run_args(out, {scenario}), out, 120);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("host h1 (127.0.0.2): " + agent + ": missing or not executable there"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/fleet.json")) << "a process started";
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/proc", ec)) {
+    std::ifstream f(e.path() / "cmdline");
+    const std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(cmd.find(out), std::string::npos) << "left running: " << e.path();
+  }
 }
 
 TEST(HostsWithoutRoot, ExitTwoAndSayWhy) {

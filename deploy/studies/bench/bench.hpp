@@ -16,6 +16,7 @@ struct BenchOptions {
   int domain = 0;
   bool replot = false;    ///< scale: redraw scale.png from OUT/scale.csv, run nothing
   int hosts = 0;          ///< scale: also run each size on this many namespace hosts (0: one host only)
+  bool ssh = false;       ///< scale: those hosts reached over ssh (the rehearsal of real machines)
   bool realtime = false;  ///< pace the fleets' ticks to the wall clock (every tick starts from idle)
   std::string record =
       "all";  ///< what each fleet records in run.mcap: all, plant or none (a run's default: all)

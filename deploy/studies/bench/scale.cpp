@@ -38,6 +38,7 @@ std::vector<records::ResultColumn> columns() {
   std::vector<records::ResultColumn> cols = {{"agents", "N", 0},
                                              {"mode", "mode", -1},
                                              {"hosts", "hosts", 0},
+                                             {"started_by", "started by", -1},
                                              {"status", "status", -1, false, true},
                                              {"status_text", "status", -1, true, false},
                                              {"discovery_s", "discovery s", 2},
@@ -152,13 +153,19 @@ json memory_json(const FleetMemory& mem) {
           {"pss_total_MB", mem.total_pss_kB / kKiB}};
 }
 
+/// "N16-ec", "N16-ec-hosts3", "N16-ec-hosts3-ssh": a row's run folder and JUnit case.
+std::string variant_name(const BenchOptions& o, int n, const std::string& mode, int hosts) {
+  return "N" + std::to_string(n) + "-" + mode + (hosts > 1 ? "-hosts" + std::to_string(hosts) : "") +
+         (hosts > 1 && o.ssh ? "-ssh" : "");
+}
+
 /// One fleet size in one control mode on `hosts` hosts (1: this machine, no namespaces): its
 /// row of the table.
 json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
-  const std::string run_dir = o.out + "/runs/N" + std::to_string(n) + "-" + mode +
-                              (hosts > 1 ? "-hosts" + std::to_string(hosts) : "");
+  const std::string run_dir = o.out + "/runs/" + variant_name(o, n, mode, hosts);
   config::Scenario s = scale_scenario(o, n, mode);
   if (hosts > 1) s.hosts.count = hosts;
+  if (hosts > 1) s.hosts.ssh = o.ssh;
   FleetMemory mem;
   FleetCost cost;
   const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
@@ -190,6 +197,7 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"tick_filter", s.uses_tick_filter() ? "yes" : "no"},
       {"plant_scheduling", sum.data().value("plant", json::object()).value("loop_scheduling", "")},
       {"hosts", hosts},
+      {"started_by", hosts > 1 ? (o.ssh ? "ssh" : "ip netns") : ""},
       {"wall_s", wall},
       {"status", status.substr(0, status.find(':'))},
       {"status_full", status},
@@ -254,8 +262,7 @@ int bench_scale(const BenchOptions& o) {
         std::string failure;
         for (const auto& m : misses) failure += (failure.empty() ? "" : "; ") + m;
         cases.push_back(
-            {"N" + std::to_string(n) + "-" + mode + (hosts > 1 ? "-hosts" + std::to_string(hosts) : ""),
-             "maptr.bench.scale", row.value("wall_s", 0.0), failure});
+            {variant_name(o, n, mode, hosts), "maptr.bench.scale", row.value("wall_s", 0.0), failure});
         missed += !misses.empty();
       }
   records::write_text_file(o.out + "/scale.md", t.md());
