@@ -30,4 +30,10 @@ bool summary_path_matches(const std::string& pattern, const std::string& path);
 /// when null, `discovery_rematched[]`) is not looked into further.
 std::vector<std::string> undocumented_summary_keys(const nlohmann::json& summary);
 
+namespace detail {
+/// The keys of the plant's results (records/summary_plant_fields.cpp).
+std::vector<SummaryField> plant_keys_run();
+std::vector<SummaryField> plant_keys_faults();
+}  // namespace detail
+
 }  // namespace maptr::records

@@ -113,11 +113,13 @@ void plot(const std::string& dir) {
                     report::PlotFrame{"1500,900", ""}, plot_body());
 }
 
-/// The default scenario with n agents, every moving segment at kScaleSpeed, the last one
-/// stretched to the bench's duration.
-config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string& mode) {
+/// The default scenario with n agents on `hosts` hosts (over ssh with --ssh), every moving
+/// segment at kScaleSpeed, the last one stretched to the bench's duration.
+config::Scenario scale_scenario(const BenchOptions& o, int n, const std::string& mode, int hosts) {
   config::Scenario s = config::load_scenario(o.source_dir + "/deploy/scenarios/paper.yaml");
   s.robot.agents = n;
+  if (hosts > 1) s.hosts.count = hosts;
+  s.hosts.ssh = hosts > 1 && o.ssh;
   s.mode = mode;
   s.duration_s = o.duration_s;
   s.trace_every = kScaleTraceEvery;
@@ -163,9 +165,7 @@ std::string variant_name(const BenchOptions& o, int n, const std::string& mode, 
 /// row of the table.
 json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
   const std::string run_dir = o.out + "/runs/" + variant_name(o, n, mode, hosts);
-  config::Scenario s = scale_scenario(o, n, mode);
-  if (hosts > 1) s.hosts.count = hosts;
-  if (hosts > 1) s.hosts.ssh = o.ssh;
+  config::Scenario s = scale_scenario(o, n, mode, hosts);
   FleetMemory mem;
   FleetCost cost;
   const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
