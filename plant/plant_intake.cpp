@@ -71,7 +71,7 @@ bool PlantLoop::one_writer(const MemberId& id, const Handle& h, long long k) {
   // launcher announced its start. A stranded copy (its host cut off while the launcher started
   // it elsewhere) that is heard again after the heal is not it.
   if (membership_.takes(id, writer_id(h))) return true;
-  if (reject("stale copy") <= kRejectsLogged)
+  if (reject("stale_copy") <= kRejectsLogged)
     log_.warn("rejected {}'s sample for tick {} from a writer other than its current one (an earlier copy)",
               member_name(id), k);
   return false;

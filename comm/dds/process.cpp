@@ -23,6 +23,8 @@ void on_signal(int) { g_stop.store(true); }
 std::atomic<bool>& stop_flag() {
   std::signal(SIGTERM, on_signal);
   std::signal(SIGINT, on_signal);
+  std::signal(SIGHUP,
+              on_signal);  // started over ssh: the launcher's SIGTERM to the client arrives as a hang-up
   return g_stop;
 }
 

@@ -62,6 +62,12 @@ int child_main(void* arg) {
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (getppid() != s->parent) _exit(1);
   setpgid(0, 0);  // a Ctrl-C in the terminal reaches the launcher only; it ends the children
+  const int in =
+      open("/dev/null", O_RDONLY);  // never the launcher's terminal (it would stop a background reader)
+  if (in >= 0) {
+    dup2(in, 0);
+    close(in);
+  }
   const int fd = open(s->err_path, O_WRONLY | O_CREAT | O_APPEND, 0644);
   if (fd >= 0) {
     dup2(fd, 1);
@@ -162,6 +168,7 @@ void spawn(Child& c, const std::string& run_dir, const Environment& env, int par
   }
   if (pid < 0) throw std::runtime_error("cannot start " + c.name + " (clone failed)");
   c.pid = pid;
+  c.remote_pid = -1;  // known again from this start's NodeReady
   c.participant_id = participant_id;
   c.running = true;
   c.exit_code = -1;

@@ -123,9 +123,8 @@ class Fleet : private FaultTargets {
   void strand_controllers(int h, double at_s);
   /// heal of host h (-1: every host, at the run's end): SIGKILL to its stranded copies.
   void end_stranded(int h);
-  /// After the heal of host h: the stranded copies started over ssh end on their host (kill -9 over
-  /// ssh, with the pid their NodeReady gave).
-  void end_stranded_remote(int h);
+  /// A stranded copy's local process was reaped: its pid is not to be signalled any more.
+  void forget_stranded(pid_t pid);
   /// A failed-over controller `c` is ready again: its failover ends at the plant's time.
   void failed_over(const Child& c);
   bool on_hosts() const { return hosts_ != nullptr; }
@@ -147,8 +146,8 @@ class Fleet : private FaultTargets {
     int host;
     pid_t pid;
     std::string name;
-    pid_t remote_pid;                 ///< over ssh: its pid on its host (-1: unknown)
-    std::vector<std::string> prefix;  ///< over ssh: how to reach its host
+    pid_t remote_pid;    ///< over ssh: its pid on its host (-1: unknown)
+    std::string binary;  ///< what it runs (checked before its end)
   };
   std::vector<Stranded> stranded_;  ///< the old copies of controllers failed over from a cut-off host
   std::unique_ptr<LauncherParticipant> domain_;       ///< the launcher's participant

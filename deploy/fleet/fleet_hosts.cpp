@@ -1,6 +1,8 @@
 // A fleet on several hosts: the fleet's side of host placement (host_placement.hpp): the hosts'
 // discovery servers, and what host faults (kill-host, partition, heal) do to the processes.
 #include <csignal>
+#include <fstream>
+#include <iterator>
 
 #include "deploy/fleet/fleet.hpp"
 
@@ -13,11 +15,11 @@ void Fleet::setup_hosts() {
   for (const char* b : {"maptr_discovery", "maptr_plant", "maptr_central", "maptr_group", "maptr_agent"})
     binaries.push_back(o_.bin_dir + "/" + b);
   for (int i = 0; i < hosts_->count(); ++i)
-    if (const std::string missing = hosts_->missing_binary(i, binaries); !missing.empty())
-      throw config::ScenarioError(
-          "host " + hosts_->host(i).name + " (" + hosts_->host(i).address + "): " + missing +
-          ": missing or not executable there; every machine needs the binaries at this "
-          "machine's paths (README \"Real machines\")");
+    if (const std::string problem = hosts_->missing_binary(i, binaries); !problem.empty())
+      throw config::ScenarioError("host " + hosts_->host(i).name + " (" + hosts_->host(i).address +
+                                  "): " + problem +
+                                  "; every machine needs the binaries at this machine's paths (README \"Real "
+                                  "machines\")");
   dds_.interface_address = hosts_->launcher_address();
   // One discovery server per host; each server knows the others, each client its host's own.
   const std::string servers = hosts_->discovery_servers();
@@ -68,9 +70,8 @@ std::vector<std::string> Fleet::apply_host_fault(const config::FaultSpec& f, dou
       a = {FaultAction::kSkip, "the bridge did not take the cut (bridge link set ... state 0)"};
     }
   } else if (f.action == "heal" && host.partitioned) {
-    end_stranded(h);  // before the link is back, the copies this machine can reach
+    end_stranded(h);  // before the link is back
     if (hosts_->heal(h)) ds.release();
-    end_stranded_remote(h);  // then those on the host, over ssh, before the plant goes on
     log_.warn("fault: host {} linked again at t={:.2f} s", host.name, at_s);
   } else {
     a = {FaultAction::kSkip, hosts_->namespaces() ? "host not in a state for this action"
@@ -88,7 +89,9 @@ std::vector<std::string> Fleet::fail_over() {
     if (!f.to.empty() || !f.problem.empty()) continue;
     Child* c = find(f.name);
     if (!c || c->running) continue;  // not reaped yet
-    if (!hosts_->move_off_unreachable(*c)) {
+    const Host& was = hosts_->host(c->host);
+    const bool reachable = !was.lost && !was.partitioned;  // healed meanwhile: it starts there again
+    if (!reachable && !hosts_->move_off_unreachable(*c)) {
       f.problem = "no host left that is neither lost nor cut off";
       log_.error("failover: {} of host {}: {}", f.name, f.from, f.problem);
       continue;
@@ -106,50 +109,52 @@ std::vector<std::string> Fleet::fail_over() {
 
 void Fleet::strand_controllers(int h, double at_s) {
   // A cut-off host's controllers are out of the launcher's reach as a lost one's: the plant has
-  // stopped waiting for them at this tick, and new copies start on a surviving host. The old
-  // copies run on where they are, stranded, until the heal lets the launcher end them.
+  // stopped waiting for them at this tick, and new copies start on a reachable host. The old
+  // copies run on where they are, stranded, until the heal. With no reachable host to go to
+  // they stay, and rejoin at the heal.
+  if (!hosts_->reachable_besides(h)) return;
   for (auto& c : kids_) {
     const bool controller = c.kind == ChildKind::kCentral || c.kind == ChildKind::kGroup;
     if (c.host != h || !c.running || c.external || !controller) continue;
-    stranded_.push_back({h, c.pid, c.name, is_ssh_prefix(c.prefix) ? c.remote_pid : -1, c.prefix});
+    stranded_.push_back({h, c.pid, c.name, is_ssh_prefix(c.prefix) ? c.remote_pid : -1, c.binary});
     c.running = false;
+    c.paused = false;
     failovers_.push_back({c.name, hosts_->host(h).name, "", at_s});
   }
 }
 
+namespace {
+/// Whether process `pid` of this machine still runs `binary` (not reused by another process).
+bool runs(pid_t pid, const std::string& binary) {
+  if (pid <= 1) return false;
+  std::ifstream f("/proc/" + std::to_string(pid) + "/cmdline");
+  const std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  return cmd.find(binary) != std::string::npos;
+}
+}  // namespace
+
 void Fleet::end_stranded(int h) {
-  // Before the link is back: a stranded copy never meets the fleet again (and the plant would
-  // take its samples only from the copy started last, its current participant id).
+  // Before the link is back, so that a stranded copy never meets the fleet again: its process
+  // on this machine (the copy on a namespace host, the ssh client over ssh) and, over ssh, the
+  // copy itself by the pid its NodeReady gave. A partition exists only for namespace hosts, whose
+  // processes share this machine's pids; each is checked to be still the copy before its end.
   for (auto it = stranded_.begin(); it != stranded_.end();) {
     if (h >= 0 && it->host != h) {
       ++it;
       continue;
     }
-    ::kill(it->pid, SIGKILL);  // over ssh: its client, which does not reach its host yet
-    log_.warn("{}: the stranded copy (pid {}) on {} ended", it->name, it->pid, hosts_->host(it->host).name);
-    if (it->remote_pid > 0 && h >= 0) {
-      it->pid = -1;  // its host's own process is ended once the link is back
-      ++it;
-      continue;
-    }
+    if (it->pid > 1) ::kill(it->pid, SIGKILL);  // a child not reaped yet: its pid is still its own
+    const bool remote = runs(it->remote_pid, it->binary);
+    if (remote) ::kill(it->remote_pid, SIGKILL);
+    log_.warn("{}: the stranded copy on {} ended (pid {}{})", it->name, hosts_->host(it->host).name, it->pid,
+              remote ? ", on the host " + std::to_string(it->remote_pid) : std::string());
     it = stranded_.erase(it);
   }
 }
 
-void Fleet::end_stranded_remote(int h) {
-  for (auto it = stranded_.begin(); it != stranded_.end();) {
-    if (it->host != h || it->remote_pid <= 0) {
-      ++it;
-      continue;
-    }
-    std::vector<std::string> argv = it->prefix;
-    argv.insert(argv.end(), {"kill", "-9", std::to_string(it->remote_pid)});
-    const int rc = run_tool(argv);
-    log_.warn(
-        "{}: its stranded copy on {} (pid {} there) {}", it->name, hosts_->host(h).name, it->remote_pid,
-        rc == 0 ? "ended over ssh" : "was gone already or could not be reached (" + std::to_string(rc) + ")");
-    it = stranded_.erase(it);
-  }
+void Fleet::forget_stranded(pid_t pid) {
+  for (auto& s : stranded_)
+    if (s.pid == pid) s.pid = -1;  // reaped: its pid may be reused
 }
 
 void Fleet::failed_over(const Child& c) {

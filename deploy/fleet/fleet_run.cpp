@@ -54,6 +54,7 @@ void Fleet::on_exit(const Exit& e, bool expected) {
       log_.warn("the discovery server (pid {}) died: exit {} signal {}", e.pid, e.exit_code, e.signal);
     return;
   }
+  forget_stranded(e.pid);
   Child* c = nullptr;
   for (auto& k : kids_)
     if (k.pid == e.pid && k.running) c = &k;
@@ -71,7 +72,9 @@ void Fleet::on_exit(const Exit& e, bool expected) {
 
 TargetState Fleet::state_of(const std::string& target) {
   if (target == kDiscoveryTarget)
-    return ds_.empty() ? TargetState{} : TargetState{true, false, ds_.front()->running(), ds_paused_};
+    return ds_.empty() ? TargetState{}
+                       : TargetState{true, false, ds_.front()->running(), ds_paused_,
+                                     on_hosts() && is_ssh_prefix(hosts_->host(0).prefix)};
   const Child* c = find(target);
   return c ? TargetState{true, c->external, c->running, c->paused, is_ssh_prefix(c->prefix)} : TargetState{};
 }

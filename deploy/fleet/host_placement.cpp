@@ -67,13 +67,21 @@ Child HostPlacement::host_template(int h) const {
 
 std::string HostPlacement::missing_binary(int h, const std::vector<std::string>& binaries) const {
   if (host(h).prefix.empty()) return "";
-  std::vector<std::string> args = {"-c", "for b; do test -x \"$b\" || { echo \"$b\"; exit 1; }; done", "sh"};
+  constexpr const char* kMark = "maptr-missing: ";
+  std::vector<std::string> args = {
+      "-c", std::string("for b; do test -x \"$b\" || { echo \"") + kMark + "$b\"; exit 1; }; done", "sh"};
   args.insert(args.end(), binaries.begin(), binaries.end());
   std::string out;
-  if (run_tool(host_argv(host(h).prefix, {}, "sh", args), &out) == 0) return "";
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  const auto nl = out.rfind('\n');
-  return out.empty() ? "(the check could not run there)" : out.substr(nl == std::string::npos ? 0 : nl + 1);
+  const int rc = run_tool(host_argv(host(h).prefix, {}, "sh", args), &out);
+  if (rc == 0) return "";
+  const auto at = out.find(kMark);
+  if (at == std::string::npos) {
+    const auto end = out.find_first_of("\r\n");
+    return "cannot run a command there (exit " + std::to_string(rc) +
+           (out.empty() ? "" : ": " + out.substr(0, end)) + ")";
+  }
+  const std::string rest = out.substr(at + std::string(kMark).size());
+  return rest.substr(0, rest.find_first_of("\r\n")) + ": missing or not executable there";
 }
 
 namespace {
@@ -101,6 +109,12 @@ bool HostPlacement::move_off_unreachable(Child& c) const {
     put_on(c, host_template(h));
     return true;
   }
+  return false;
+}
+
+bool HostPlacement::reachable_besides(int h) const {
+  for (int k = 0; k < count(); ++k)
+    if (k != h && !host(k).lost && !host(k).partitioned) return true;
   return false;
 }
 

@@ -62,6 +62,8 @@ class HostPlacement {
   /// A child whose host is lost or cut off moves to the next host that is neither (false: it
   /// stays, as no host is left or its own is reachable).
   bool move_off_unreachable(Child& c) const;
+  /// Whether a host other than h is neither lost nor cut off.
+  bool reachable_besides(int h) const;
 
   /// kill-host: the host's link is cut and it counts as lost and cut off.
   void lose(int h);

@@ -134,10 +134,16 @@ std::vector<std::string> host_argv(const std::vector<std::string>& prefix, const
   for (const auto& [k, v] : env) command.push_back(k + "=" + v);
   command.push_back(binary);
   command.insert(command.end(), args.begin(), args.end());
-  // ssh joins its words with blanks for the remote shell: each is quoted to arrive as it is.
-  if (is_ssh_prefix(prefix))
-    for (auto& w : command) w = shell_quote(w);
   std::vector<std::string> out = prefix;
+  if (is_ssh_prefix(prefix)) {
+    // ssh joins its words with blanks for the remote shell: each is quoted to arrive as it is.
+    for (auto& w : command) w = shell_quote(w);
+    // -n: never the launcher's stdin (a terminal would stop a background client); -tt: a
+    // terminal there, so that when the launcher ends the client the process gets SIGHUP.
+    const auto has = [&](const char* o) { return std::find(out.begin(), out.end(), o) != out.end(); };
+    if (!has("-n")) out.insert(out.begin() + 1, "-n");
+    if (!has("-tt")) out.insert(out.begin() + 1, "-tt");
+  }
   out.insert(out.end(), command.begin(), command.end());
   return out;
 }

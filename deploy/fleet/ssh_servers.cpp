@@ -3,7 +3,6 @@
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
-#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -13,8 +12,11 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <thread>
+
+#include "deploy/fleet/children.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -43,21 +45,11 @@ bool accepts(const std::string& address) {
   return ok;
 }
 
-/// Starts `argv` with stdout and stderr into `log`; its pid.
-pid_t start(const std::vector<std::string>& argv, const std::string& log) {
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a launcher killed takes its servers with it
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    std::vector<char*> a;
-    for (const auto& s : argv) a.push_back(const_cast<char*>(s.c_str()));
-    a.push_back(nullptr);
-    ::execvp(a[0], a.data());
-    ::_exit(127);
-  }
-  return pid;
+/// This process's environment, for a server started with it.
+std::vector<std::string> this_environment() {
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e) env.emplace_back(*e);
+  return env;
 }
 }  // namespace
 
@@ -92,15 +84,22 @@ SshServers::SshServers(std::vector<Host>& hosts, int tag) : dir_(ssh_dir(std::to
   const std::string host_key = first_two_words(dir_ + "/host.pub");
   for (auto& h : hosts) {
     known << h.address << " " << host_key << "\n";
-    servers_.push_back(start({"ip", "netns", "exec", h.netns, kSshd, "-D", "-e", "-f", dir_ + "/sshd_config",
-                              "-o", "ListenAddress=" + h.address},
-                             dir_ + "/sshd-" + h.name + ".log"));
+    // Started as every child of the launcher is (its own process group, gone with the launcher).
+    servers_.push_back(start_process({"ip", "netns", "exec", h.netns, kSshd, "-D", "-e", "-f",
+                                      dir_ + "/sshd_config", "-o", "ListenAddress=" + h.address},
+                                     this_environment(), dir_ + "/sshd-" + h.name + ".log", -1));
+    // Nothing of root's own ssh set-up (its configuration, its agent's keys) takes part.
     h.prefix = {"ssh",
-                "-tt",
+                "-F",
+                "/dev/null",
                 "-i",
                 dir_ + "/client",
                 "-o",
+                "IdentitiesOnly=yes",
+                "-o",
                 "BatchMode=yes",
+                "-o",
+                "ConnectTimeout=10",
                 "-o",
                 "UserKnownHostsFile=" + dir_ + "/known_hosts",
                 "-o",
@@ -126,9 +125,13 @@ SshServers::~SshServers() { remove(); }
 
 void SshServers::remove() {
   for (const pid_t pid : servers_) {
-    if (pid <= 0) continue;
+    // Still this run's server (not reaped by the launcher's wait and its pid reused)?
+    std::ifstream f("/proc/" + std::to_string(pid) + "/cmdline");
+    const std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (pid <= 1 || cmd.find(dir_) == std::string::npos) continue;
     ::kill(pid, SIGTERM);
-    ::waitpid(pid, nullptr, 0);
+    for (int i = 0; i < 200 && ::waitpid(pid, nullptr, WNOHANG) == 0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   servers_.clear();
   std::error_code ec;

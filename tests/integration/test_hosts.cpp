@@ -431,6 +431,16 @@ void partition_of_the_controllers_host(bool ssh) {
       EXPECT_NE(p["host"], "h1") << p.dump();
       EXPECT_EQ(p["exit_code"], 0) << p.dump();
     }
+  // The stranded copies were ended at the heal (over ssh: the ssh client and the copy on the host).
+  std::ifstream log(out + "/logs/launcher.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  for (const std::string name : {"central", "group-L", "group-R"}) {
+    const std::string line = name + ": the stranded copy on h1 ended (pid ";
+    const auto at = text.find(line);
+    EXPECT_NE(at, std::string::npos) << name << "'s stranded copy was not ended";
+    if (ssh && at != std::string::npos)
+      EXPECT_NE(text.substr(at, 120).find(", on the host "), std::string::npos) << text.substr(at, 120);
+  }
   // The ledgers go on from the ones before the cut: never a step back.
   for (const char* side : {"L", "R"})
     EXPECT_EQ(s["plant"]["group_wear"][side]["regressions"], 0) << at(s, {"plant", "group_wear"});

@@ -76,14 +76,15 @@ TEST(HostCommand, PrefixThenEnvThenTheProcess) {
 
 TEST(HostCommand, OverSshEveryWordArrivesAsItIsAtTheRemoteShell) {
   // ssh joins the words after the destination with blanks for the remote shell: each is quoted.
+  // -n keeps the launcher's terminal from it, -tt gives the process one there (it ends with its ssh).
   const auto argv = maptr::deploy::fleet::host_argv({"/usr/bin/ssh", "pi@board1"}, {{"K", "a b'c"}},
                                                     "/opt/maptr/bin/maptr_agent", {"--id", "L0;x"});
   const std::vector<std::string> want = {
-      "/usr/bin/ssh", "pi@board1", "'env'", "'K=a b'\\''c'", "'/opt/maptr/bin/maptr_agent'",
+      "/usr/bin/ssh", "-tt",   "-n", "pi@board1", "'env'", "'K=a b'\\''c'", "'/opt/maptr/bin/maptr_agent'",
       "'--id'",       "'L0;x'"};
   EXPECT_EQ(argv, want);
   std::string joined = "printf '%s|'";
-  for (std::size_t i = 2; i < argv.size(); ++i) joined += " " + argv[i];
+  for (std::size_t i = 4; i < argv.size(); ++i) joined += " " + argv[i];
   FILE* sh = popen(joined.c_str(), "r");
   ASSERT_NE(sh, nullptr);
   char buf[256] = {};
