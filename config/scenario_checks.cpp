@@ -142,6 +142,8 @@ void Scenario::validate() const {
   if (control.fault_persistence_s < dt())
     c.fail("control.fault_persistence_s", model::param_value(control.fault_persistence_s),
            "must be at least one tick");
+  if (hosts.ssh && !hosts.enabled())
+    c.fail("hosts.ssh", "true", "the ssh rehearsal runs on namespace hosts: give hosts.count (or --hosts N)");
   check_segments(*this, c);
   check_reach(*this, c);
   check_faults(*this, c);

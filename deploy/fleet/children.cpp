@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -120,9 +121,16 @@ std::string describe_end(const Child& c, const std::string& run_dir) {
 }
 
 namespace {
-/// What the launcher sets for c: env, c.host_env and MAPTR_PARTICIPANT_ID.
+/// What the launcher sets for c: env, c.host_env and MAPTR_PARTICIPANT_ID; for a process on a
+/// host (a command prefix: over ssh it gets nothing else), also the user's own settings of
+/// comm/posix/environment.hpp that this launcher has, but a folder of this machine's session.
 Environment own_environment(const Child& c, const Environment& env, int participant_id) {
-  Environment own = env;
+  Environment own;
+  if (!c.prefix.empty())
+    for (const auto& v : comm::kEnvironment)
+      if (std::string(v.set_by).rfind("user", 0) == 0 && std::string(v.name) != comm::kEnvRuntimeDir)
+        if (const char* value = std::getenv(v.name)) own[v.name] = value;
+  for (const auto& [k, v] : env) own[k] = v;
   for (const auto& [k, v] : c.host_env) own[k] = v;
   own[comm::kEnvParticipantId] = std::to_string(participant_id);
   return own;
