@@ -92,6 +92,7 @@ bool well_formed(const MembershipEvent& e, const FleetBounds& b) {
   if (e.seq() == 0 || !name_ok(e.name()) || e.node_kind() > NODE_PLANT || e.side() > SIDE_R ||
       e.kind() > MEMBER_RESUMED || !std::isfinite(e.wall_s()) || e.wall_s() < 0.0)
     return false;
+  if (e.participant_id() < -1 || e.participant_id() > 65535) return false;
   return e.node_kind() != NODE_AGENT || e.index() < b.per_side;
 }
 

@@ -43,7 +43,8 @@ bool well_formed(const GroupStatus& g, const FleetBounds& b);
 /// relay counts at most per_side. Any: tick, segment, rejected.
 bool well_formed(const CentralCommand& c, const FleetBounds& b);
 /// MembershipEvent: seq above 0; a name of 1..kMaxNameLength characters; a known node kind,
-/// side and event kind; an agent's index below per_side; wall_s finite, not negative.
+/// side and event kind; an agent's index below per_side; wall_s finite, not negative;
+/// participant_id from -1 to 65535.
 bool well_formed(const MembershipEvent& e, const FleetBounds& b);
 /// Control: a known command other than CONTROL_NONE; seq above 0. Any: tick, member_seq (the
 /// fault gate checks they answer its own gate).

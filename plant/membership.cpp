@@ -64,7 +64,7 @@ void Membership::mark_dead(const MemberId& id, const char* why) {
   record(id, why);
 }
 
-bool Membership::on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name) {
+bool Membership::on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name, int participant) {
   // The launcher numbers its events 1, 2, ...: one not above the last applied is no news, and
   // an unknown kind says nothing; neither moves the sequence a fault gate waits for.
   if (seq <= launcher_seq_ || kind == LauncherEvent::kOther) return false;
@@ -89,7 +89,10 @@ bool Membership::on_launcher(uint64_t seq, LauncherEvent kind, const std::string
   // Started again, or resumed: waited for from now on; a resumed process keeps its writer.
   if (kind == LauncherEvent::kResumed && !m.paused) return true;
   record(*id, kind == LauncherEvent::kResumed ? "resumed (launcher)" : "started (launcher)");
-  if (kind == LauncherEvent::kStarted) m.writer_known = false;
+  if (kind == LauncherEvent::kStarted) {
+    m.writer_known = false;
+    m.participant = participant > 0 ? participant : -1;  // 0 is the discovery server's: not said
+  }
   m.paused = false;
   m.live = true;
   m.rejoining = true;

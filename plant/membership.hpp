@@ -42,6 +42,7 @@ struct Member {
   bool answered = false;  ///< answered the current tick
   WriterId writer{};      ///< DDS writer, learnt from its first sample
   bool writer_known = false;
+  int participant = -1;    ///< DDS participant id the launcher gave its latest start (-1: not said)
   bool rejoining = false;  ///< restarted or resumed (launcher): expected from the next tick, not yet heard
   bool paused = false;     ///< paused by the launcher: not waited for, its lease loss expected
   bool excused = false;    ///< an idle agent not due to answer the current tick (comm/lockstep/lockstep.hpp)
@@ -79,16 +80,19 @@ class Membership {
   /// news); a resumed one is waited for again from now on, on the same writer. The caller has
   /// checked the event (plant/validation.hpp); `name` is a member or the plant. False (nothing
   /// applied, the sequence unchanged) for seq not above launcher_seq() or kind kOther.
-  bool on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name);
+  /// `participant`: for kStarted, the participant id of the new start (0 or -1: not said).
+  bool on_launcher(uint64_t seq, LauncherEvent kind, const std::string& name, int participant = -1);
   /// Highest launcher event number applied so far.
   uint64_t launcher_seq() const { return launcher_seq_; }
   /// A writer of `role`'s topic lost its liveliness: the member whose current writer it is dies
   /// (unless the launcher paused it or it is rejoining: a lease that ran out during a pause).
   void on_liveliness_lost(Role role, const WriterId& writer);
-  /// Whether an answer of `id` on `writer` is its own: its writer is not known yet (none since
-  /// its last start), or it is this one.
-  bool takes(const MemberId& id, const WriterId& writer) const {
+  /// Whether an answer of `id` on `writer` (of participant `writer_participant`, -1 unknown) is
+  /// its own: from the participant the launcher gave its latest start when it said which (on a
+  /// plain domain); else the writer of its first answer since that start.
+  bool takes(const MemberId& id, const WriterId& writer, int writer_participant = -1) const {
     const Member& m = at(id);
+    if (m.participant >= 0 && writer_participant >= 0) return writer_participant == m.participant;
     return !m.writer_known || m.writer == writer;
   }
   /// member answered the current tick on `writer`: live again (a rejoin is recorded once).

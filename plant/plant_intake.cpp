@@ -4,6 +4,7 @@
 #include <fstream>
 #include <thread>
 
+#include "comm/dds/fleet_guid.hpp"
 #include "comm/dds/fleet_ids.hpp"
 #include "comm/lockstep/lockstep.hpp"
 #include "config/scenario.hpp"
@@ -70,7 +71,8 @@ bool PlantLoop::one_writer(const MemberId& id, const Handle& h, long long k) {
   // A controller has one writer between two starts: the one of its first answer after the
   // launcher announced its start. A stranded copy (its host cut off while the launcher started
   // it elsewhere) that is heard again after the heal is not it.
-  if (membership_.takes(id, writer_id(h))) return true;
+  const auto participant = comm::fleet_participant(p_.options().fleet_id, h);  // none on a secure domain
+  if (membership_.takes(id, writer_id(h), participant ? *participant : -1)) return true;
   if (reject("stale_copy") <= kRejectsLogged)
     log_.warn("rejected {}'s sample for tick {} from a writer other than its current one (an earlier copy)",
               member_name(id), k);

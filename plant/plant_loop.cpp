@@ -304,7 +304,7 @@ void PlantLoop::apply_launcher_events() {
     // A malformed event, or one whose fields do not describe the process it names, is not
     // applied and does not move the launcher's sequence (a later gate waits for the real one).
     const bool ok = valid(e, lim);
-    if (!ok || !membership_.on_launcher(e.seq(), launcher_event(e.kind()), name)) {
+    if (!ok || !membership_.on_launcher(e.seq(), launcher_event(e.kind()), name, e.participant_id())) {
       if (reject(ok ? "stale" : "malformed") <= kRejectsLogged)
         log_.warn(
             "rejected a {} membership event from the launcher's id: seq {} (last applied {}), name '{}', "

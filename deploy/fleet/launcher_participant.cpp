@@ -50,6 +50,7 @@ void LauncherParticipant::publish_member(const Child& c, msg::MemberEvent kind, 
   e.index(c.index);
   e.kind(kind);
   e.wall_s(wall_s);
+  e.participant_id(kind == msg::MEMBER_STARTED ? c.participant_id : -1);
   w_member_->write(&e);
 }
 

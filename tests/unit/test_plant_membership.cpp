@@ -244,3 +244,19 @@ TEST_F(PlantMembership, AControllerHasOneWriterBetweenTwoStarts) {
   EXPECT_FALSE(m.takes(kGroupL, writer(1))) << "the earlier copy";
   EXPECT_TRUE(m.takes(kGroupL, writer(3)));
 }
+
+TEST_F(PlantMembership, ARestartedControllerIsTheParticipantTheLauncherNamed) {
+  // The launcher says which participant the new start of group-L is (57): an earlier copy (17)
+  // that answers first is not it, and the new one is taken whenever it comes.
+  m.begin_tick();
+  m.on_answer(kGroupL, writer(1));
+  ASSERT_TRUE(m.on_launcher(1, LauncherEvent::kStarted, "group-L", 57));
+  m.begin_tick();
+  EXPECT_FALSE(m.takes(kGroupL, writer(1), 17)) << "the earlier copy, though it would answer first";
+  EXPECT_TRUE(m.takes(kGroupL, writer(2), 57));
+  m.on_answer(kGroupL, writer(2));
+  EXPECT_FALSE(m.takes(kGroupL, writer(1), 17));
+  // Not said (0: the discovery server's id, never a controller's): the first writer's rule.
+  ASSERT_TRUE(m.on_launcher(2, LauncherEvent::kStarted, "central", 0));
+  EXPECT_TRUE(m.takes(kCentral, writer(5), 99));
+}

@@ -258,6 +258,14 @@ TEST(PlantValidation, AMembershipEventDescribesTheProcessItNames) {
   auto e = event("L1", msg::NODE_AGENT, msg::SIDE_L, 1);
   e.seq(0);
   EXPECT_FALSE(valid(e, lim));
+  e = event("group-L", msg::NODE_GROUP, msg::SIDE_L, 0);
+  e.kind(msg::MEMBER_STARTED);
+  e.participant_id(65535);
+  EXPECT_TRUE(valid(e, lim));
+  e.participant_id(65536);  // no participant id is that large
+  EXPECT_FALSE(valid(e, lim));
+  e.participant_id(-2);
+  EXPECT_FALSE(valid(e, lim));
   e = event("L1", msg::NODE_AGENT, msg::SIDE_L, 1);
   e.kind(static_cast<msg::MemberEvent>(msg::MEMBER_RESUMED + 1));
   EXPECT_FALSE(valid(e, lim));
