@@ -9,6 +9,7 @@ namespace maptr::records {
 void to_json(nlohmann::json& j, const FleetProcessEntry& p) {
   j = {{"name", p.name}, {"pid", p.pid}, {"external", p.external}, {"participant_id", p.participant_id}};
   if (p.host) j["host"] = *p.host;
+  if (p.host_pid) j["host_pid"] = *p.host_pid;
 }
 
 void from_json(const nlohmann::json& j, FleetProcessEntry& p) {
@@ -18,6 +19,8 @@ void from_json(const nlohmann::json& j, FleetProcessEntry& p) {
   p.participant_id = j.value("participant_id", 0);
   p.host = j.value("host", nlohmann::json()).is_null() ? std::nullopt
                                                        : std::optional(j["host"].get<std::string>());
+  p.host_pid = j.value("host_pid", nlohmann::json()).is_number() ? std::optional(j["host_pid"].get<long>())
+                                                                 : std::nullopt;
 }
 
 void write_fleet_file(const std::string& run_dir, const FleetFile& f) {

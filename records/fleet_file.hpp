@@ -17,6 +17,7 @@ struct FleetProcessEntry {
   bool external = false;            ///< started by hand, not by the launcher
   int participant_id = 0;           ///< its DDS participant id (comm/dds/fleet_ids.hpp)
   std::optional<std::string> host;  ///< "h1", ... on several hosts (absent from the file otherwise)
+  std::optional<long> host_pid;     ///< started over ssh: its pid on its host (`pid` is its ssh client's)
 };
 
 struct FleetFile {

@@ -202,6 +202,9 @@ std::vector<SummaryField> process_keys() {
        "Times the launcher started it (1 + restarts); 0 for an external process"},
       {"processes[].external", "bool", "", "True when the user started it (--external), not the launcher"},
       {"processes[].host", "text", "", "On several hosts only: the host it ran on last (h0, h1, ...)"},
+      {"processes[].host_pid", "integer", "",
+       "Started over ssh: its pid on its host, from its readiness (pid, exit_code, signal and max_rss_kB are "
+       "its ssh client's)"},
       {"processes[].started_by", "text", "",
        "On several hosts only: the command that started it there (ssh, ip for a namespace, or the "
        "machine's own; \"\" for this machine)"}};

@@ -197,7 +197,8 @@ void Fleet::write_fleet() const {
   f.bin_dir = o_.bin_dir;
   for (const auto& c : kids_)
     f.processes.push_back({c.name, c.pid, c.external, c.base_id,
-                           c.host >= 0 ? std::optional(config::host_name(c.host)) : std::nullopt});
+                           c.host >= 0 ? std::optional(config::host_name(c.host)) : std::nullopt,
+                           c.remote_pid > 0 ? std::optional<long>(c.remote_pid) : std::nullopt});
   records::write_fleet_file(o_.run_dir, f);
 }
 

@@ -167,6 +167,7 @@ class Fleet : private FaultTargets {
   bool discovered_ = false;  ///< discover() has returned: deaths are announced from now on
   bool ds_paused_ = false;   ///< the discovery server is stopped by a pause fault
   long reported_rejected_ = 0;
+  long host_pids_written_ = 0;  ///< processes whose pid on their host fleet.json holds
 };
 
 /// Set by SIGINT/SIGTERM: the run ends.

@@ -92,6 +92,14 @@ bool Fleet::restart_dead(Child& c) {
 
 void Fleet::take_ready() {
   for (Child* c : believed_ready()) ready_names_.insert(c->name);
+  // Over ssh a process's pid on its host comes with its readiness: fleet.json names it for the
+  // tools that read a process's /proc (the benches), as the launcher's child is its ssh client.
+  const auto known =
+      std::count_if(kids_.begin(), kids_.end(), [](const Child& c) { return c.remote_pid > 0; });
+  if (known != host_pids_written_) {
+    host_pids_written_ = known;
+    write_fleet();
+  }
 }
 
 void Fleet::announce_restarted() {

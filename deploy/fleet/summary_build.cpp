@@ -130,6 +130,7 @@ nlohmann::json processes_json(const std::vector<Child>& kids) {
     if (kids[i].host >= 0) {
       procs[i]["host"] = config::host_name(kids[i].host);
       procs[i]["started_by"] = kids[i].prefix.empty() ? "" : kids[i].prefix.front();
+      if (kids[i].remote_pid > 0) procs[i]["host_pid"] = kids[i].remote_pid;
     }
   return procs;
 }

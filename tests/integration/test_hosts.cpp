@@ -361,7 +361,12 @@ TEST_F(Hosts, OverSshEveryProcessStartsBySshAndTheTraceIsTheOneHostTrace) {
   EXPECT_EQ(ssh.summary["status"], "ok");
   EXPECT_EQ(ssh.summary["trace_sha256"], one.summary["trace_sha256"]);
   ASSERT_EQ(ssh.summary["processes"].size(), 20u);
-  for (const auto& p : ssh.summary["processes"]) EXPECT_EQ(p.value("started_by", ""), "ssh") << p.dump();
+  for (const auto& p : ssh.summary["processes"]) {
+    EXPECT_EQ(p.value("started_by", ""), "ssh") << p.dump();
+    // Its pid on its host came with its readiness; the launcher's child is its ssh client.
+    EXPECT_GT(p.value("host_pid", 0L), 0L) << p.dump();
+    EXPECT_NE(p.value("host_pid", 0L), p.value("pid", 0L)) << p.dump();
+  }
   for (const auto& h : ssh.summary["hosts"]) EXPECT_EQ(h.value("started_by", ""), "ssh") << h.dump();
   EXPECT_FALSE(ssh_server_left(pid)) << "an ssh server, key or configuration of the run is left";
   EXPECT_FALSE(network_left(pid));

@@ -18,7 +18,8 @@ double per_process(double total, int n) { return n > 0 ? total / n : 0.0; }
 
 std::vector<FleetProc> fleet_processes(const records::FleetFile& fleet) {
   std::vector<FleetProc> out;
-  for (const auto& p : fleet.processes) out.push_back({p.name, p.pid, kind_of(p.name)});
+  // Over ssh the process itself, not its ssh client.
+  for (const auto& p : fleet.processes) out.push_back({p.name, p.host_pid.value_or(p.pid), kind_of(p.name)});
   if (fleet.discovery_server_pid)
     out.push_back({"discovery-server", *fleet.discovery_server_pid, ProcKind::kDiscovery});
   return out;

@@ -50,7 +50,7 @@ FleetMemory sample_memory(const std::string& run_dir, const std::atomic<bool>& d
   const auto fleet = records::read_fleet_file(run_dir);
   if (!fleet) return m;
   for (const auto& p : fleet->processes) {
-    const long kb = pss_kB(p.pid);
+    const long kb = pss_kB(p.host_pid.value_or(p.pid));  // over ssh the process, not its ssh client
     if (kb < 0) continue;
     m.total_pss_kB += kb;
     if (p.name[0] == 'L' || p.name[0] == 'R') m.agent_pss_kB.push_back(kb);
