@@ -335,16 +335,22 @@ std::string ssh_problem() {
   return "";
 }
 
-/// True while a process runs whose command line names the ssh folder of this launcher's run.
-bool ssh_server_left(pid_t launcher) {
-  const std::string dir = "/run/maptr-hosts/" + std::to_string(launcher) + "-ssh";
+/// True while a process runs whose command line holds `text`.
+bool running_with(const std::string& text) {
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator("/proc", ec)) {
     std::ifstream f(e.path() / "cmdline");
-    std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    if (cmd.find(dir) != std::string::npos) return true;
+    const std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (cmd.find(text) != std::string::npos) return true;
   }
-  return std::filesystem::exists(dir);
+  return false;
+}
+
+std::string ssh_dir_of(pid_t launcher) { return "/run/maptr-hosts/" + std::to_string(launcher) + "-ssh"; }
+
+/// True while a server of this launcher's run runs or its folder of keys is there.
+bool ssh_server_left(pid_t launcher) {
+  return running_with(ssh_dir_of(launcher)) || std::filesystem::exists(ssh_dir_of(launcher));
 }
 
 TEST_F(Hosts, OverSshEveryProcessStartsBySshAndTheTraceIsTheOneHostTrace) {
@@ -400,7 +406,12 @@ TEST_F(Hosts, OverSshNothingIsLeftAfterTheLauncherIsKilled) {
   ASSERT_TRUE(ssh_server_left(pid));
   kill(pid, SIGKILL);
   waitpid(pid, nullptr, 0);
-  // The servers end with the launcher; the remote processes with their ssh.
+  // The servers end with the launcher, and the processes on the hosts with their ssh clients,
+  // before any other run sweeps (the folder of keys stays until then).
+  EXPECT_TRUE(wait_for([&] { return !running_with(ssh_dir_of(pid)); }, 30))
+      << "an ssh server outlived the launcher";
+  EXPECT_TRUE(wait_for([&] { return !running_with(out); }, 30))
+      << "a process of the run outlived the launcher";
   pid_t next = 0;
   const auto r = run_hosts(run_args(tmp.path() + "/next", {"--hosts", "2", "--duration", "1"}),
                            tmp.path() + "/next", 300, next);
