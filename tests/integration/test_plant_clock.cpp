@@ -44,8 +44,13 @@ TEST(Faults, ForgedTicksAndGatesMoveNeitherTheLaunchersClockNorItsFaults) {
   // A command acts at the launcher's current simulated time.
   { std::ofstream(out + "/control") << "kill L1\n"; }
   EXPECT_EQ(wait_child(forger, 30), 0);
-  ASSERT_EQ(wait_child(launcher, 240), 0);
+  const int code = wait_child(launcher, 240);
   const auto s = read_json(out + "/summary.json");
+  // On a failure, what the run said of itself.
+  std::ifstream said(tmp.path() + "/out.log");
+  std::stringstream output;
+  output << said.rdbuf();
+  ASSERT_EQ(code, 0) << "status: " << s.value("status", std::string("(no summary)")) << "\n" << output.str();
   ASSERT_EQ(s["failures"].size(), 2u) << s["failures"].dump();
   for (const auto& f : s["failures"]) {
     EXPECT_LT(f["at_s"].get<double>(), 12.0) << f.dump();
