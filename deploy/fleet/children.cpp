@@ -13,6 +13,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <thread>
@@ -220,6 +221,13 @@ void stop_process(pid_t pid, double term_s) {
     }
     std::this_thread::sleep_for(kStopPoll);
   }
+}
+
+bool runs_binary(pid_t pid, const std::string& binary) {
+  if (pid <= 1) return false;
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec);
+  return !ec && exe == std::filesystem::weakly_canonical(binary, ec);
 }
 
 int ParticipantIds::take(int base, int starts) {

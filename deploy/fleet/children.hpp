@@ -75,6 +75,10 @@ void spawn(Child& c, const std::string& run_dir, const Environment& env, int par
 /// The environment c starts with: the launcher's, with env, c.host_env and MAPTR_PARTICIPANT_ID.
 std::vector<std::string> child_environment(const Child& c, const Environment& env, int participant_id);
 
+/// True once process `pid` of this machine runs the program `binary` (it has made its last exec;
+/// a pid reused by another program is not it).
+bool runs_binary(pid_t pid, const std::string& binary);
+
 /// The descriptor number a child started with `pass_fd` finds it under.
 inline constexpr int kPassedFd = 3;
 

@@ -33,13 +33,6 @@ sockaddr_in loopback(int port) {
   a.sin_port = htons(static_cast<uint16_t>(port));
   return a;
 }
-/// True once process `pid` runs the program `binary` (it has made its last exec).
-bool runs_binary(pid_t pid, const std::string& binary) {
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec);
-  return !ec && exe == std::filesystem::weakly_canonical(binary, ec);
-}
-
 /// The last non-empty line of a log file ("no output" if there is none).
 std::string last_line(const std::string& path) {
   std::ifstream f(path);

@@ -1,8 +1,6 @@
 // A fleet on several hosts: the fleet's side of host placement (host_placement.hpp): the hosts'
 // discovery servers, and what host faults (kill-host, partition, heal) do to the processes.
 #include <csignal>
-#include <fstream>
-#include <iterator>
 
 #include "deploy/fleet/fleet.hpp"
 
@@ -123,16 +121,6 @@ void Fleet::strand_controllers(int h, double at_s) {
   }
 }
 
-namespace {
-/// Whether process `pid` of this machine still runs `binary` (not reused by another process).
-bool runs(pid_t pid, const std::string& binary) {
-  if (pid <= 1) return false;
-  std::ifstream f("/proc/" + std::to_string(pid) + "/cmdline");
-  const std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  return cmd.find(binary) != std::string::npos;
-}
-}  // namespace
-
 void Fleet::end_stranded(int h) {
   // Before the link is back, so that a stranded copy never meets the fleet again: its process
   // on this machine (the copy on a namespace host, the ssh client over ssh) and, over ssh, the
@@ -144,7 +132,7 @@ void Fleet::end_stranded(int h) {
       continue;
     }
     if (it->pid > 1) ::kill(it->pid, SIGKILL);  // a child not reaped yet: its pid is still its own
-    const bool remote = runs(it->remote_pid, it->binary);
+    const bool remote = runs_binary(it->remote_pid, it->binary);
     if (remote) ::kill(it->remote_pid, SIGKILL);
     log_.warn("{}: the stranded copy on {} ended (pid {}{})", it->name, hosts_->host(it->host).name, it->pid,
               remote ? ", on the host " + std::to_string(it->remote_pid) : std::string());
