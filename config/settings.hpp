@@ -1,8 +1,9 @@
 #pragma once
 // The settings outside the scenario: fixed thresholds of the processes (the launcher's waits and
 // waves, the plant's bounds and deadlines, central's path follower, the group core's cruise band,
-// the Level-2 solver's tolerances). Each struct that holds them keeps its values; beside it, a function lists
-// them as Settings, so that `maptr fields --settings` shows what a run runs with (docs/SETTINGS.md).
+// the Level-2 solver's tolerances). Each struct that holds them keeps its values; one table,
+// deploy/report/settings_table.cpp, lists them all as Settings, so that `maptr fields --settings`
+// shows what a run runs with (docs/SETTINGS.md).
 #include <chrono>
 #include <string>
 #include <vector>
@@ -21,9 +22,5 @@ std::string setting_value(double v);
 std::string setting_value(int v);
 std::string setting_value(bool v);
 std::string setting_value(std::chrono::milliseconds v);
-
-/// The settings of the cores that are not scenario fields: central's path follower, the group
-/// core's cruise band and the Level-2 solver's tolerances.
-std::vector<Setting> core_settings();
 
 }  // namespace maptr::config

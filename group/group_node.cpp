@@ -1,6 +1,7 @@
 #include "group/group_node.hpp"
 
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -39,7 +40,12 @@ int GroupNode::run() {
                core_.ledger().reallocations);
   // Every Level-2 decision, for the solve-time and oracle figures (appended: a restarted
   // controller continues the file).
-  records::Level2LogWriter l2(records::level2_log_path(args_.run_dir, side_));
+  std::optional<records::Level2LogWriter> l2;
+  try {
+    l2.emplace(records::level2_log_path(args_.run_dir, side_));
+  } catch (const records::RecordError& e) {
+    log_->warn("{}: the group runs on without its Level-2 log", e.what());
+  }
   bool infeasible = false;
   const int code = follower.run([&](const msg::PlantTick& t) {
     const control::GroupInput in = group_input(t, side_);
@@ -54,7 +60,7 @@ int GroupNode::run() {
       else
         log_->info("Level 2 feasible again at t={:.2f} s", in.t);
     }
-    if (d.level2_ran && l2) l2.write(d.level2);
+    if (d.level2_ran && l2) l2->write(d.level2);
     msg::GroupStatus st = group_status(t, side_, in, d, core_.ledger());
     for (const auto& ch : d.diagnosed) {
       const std::string name = config::agent_name(side_, ch.index);

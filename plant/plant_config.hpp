@@ -4,7 +4,6 @@
 #include <chrono>
 #include <vector>
 
-#include "config/settings.hpp"
 #include "plant_core/speed_band.hpp"
 
 namespace maptr::plant {
@@ -48,8 +47,5 @@ struct PlantNodeConfig {
   /// The barrier's deadline for a fleet of n agents, s.
   double deadline_s(int n_agents) const { return deadline_base_s + deadline_per_agent_s * n_agents; }
 };
-
-/// The plant's settings (a default PlantNodeConfig), for `maptr fields --settings`.
-std::vector<config::Setting> plant_settings();
 
 }  // namespace maptr::plant

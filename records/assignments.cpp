@@ -34,19 +34,8 @@ std::string format_assignment(const AssignmentRecord& r) {
   return format_value(cols[0], r.t_s) + "," + r.side + "," + r.driving + "\n";
 }
 
-AssignmentsWriter::AssignmentsWriter(const std::string& path) : f_(std::fopen(path.c_str(), "w")) {
-  if (!f_) throw RecordError("cannot write " + path);
-  std::fputs(header_line(assignment_columns()).c_str(), f_);
-}
-
-AssignmentsWriter::~AssignmentsWriter() {
-  if (f_) std::fclose(f_);
-}
-
-void AssignmentsWriter::write(const AssignmentRecord& r) {
-  std::fputs(format_assignment(r).c_str(), f_);
-  std::fflush(f_);
-}
+AssignmentsWriter::AssignmentsWriter(const std::string& path)
+    : RowWriter(path, header_line(assignment_columns()), CsvLines::Mode::kNew) {}
 
 std::vector<AssignmentRecord> read_assignments(const std::string& path) {
   return rows_of(CsvFile::read(path, kFile));

@@ -22,17 +22,9 @@ const std::vector<ColumnSpec>& assignment_columns();
 std::string format_assignment(const AssignmentRecord& r);
 
 /// Writes assignments.csv: the header at construction, then one flushed line per change.
-class AssignmentsWriter {
- public:
-  /// Throws RecordError when `path` cannot be written.
+/// Throws RecordError when `path` cannot be written.
+struct AssignmentsWriter : RowWriter<AssignmentRecord, format_assignment> {
   explicit AssignmentsWriter(const std::string& path);
-  ~AssignmentsWriter();
-  AssignmentsWriter(const AssignmentsWriter&) = delete;
-  AssignmentsWriter& operator=(const AssignmentsWriter&) = delete;
-  void write(const AssignmentRecord& r);
-
- private:
-  std::FILE* f_ = nullptr;
 };
 
 /// Reads assignments.csv by column name; throws RecordError naming a missing column, a

@@ -13,6 +13,19 @@ std::string header_line(const std::vector<ColumnSpec>& cols) {
   return out + "\n";
 }
 
+CsvLines::CsvLines(const std::string& path, const std::string& header, Mode mode)
+    : f_(std::fopen(path.c_str(), mode == Mode::kNew ? "w" : "a")) {
+  if (!f_) throw RecordError("cannot write " + path);
+  if (std::ftell(f_) == 0) write(header);
+}
+
+CsvLines::~CsvLines() { std::fclose(f_); }
+
+void CsvLines::write(const std::string& line) {
+  std::fputs(line.c_str(), f_);
+  std::fflush(f_);
+}
+
 std::string format_value(const ColumnSpec& col, double v) {
   char buf[64];
   std::snprintf(buf, sizeof(buf), col.format, v);

@@ -3,6 +3,7 @@
 // A record's columns are described once, as a table of (name, unit, printf format); writers
 // format a row through that table and readers look columns up by name in the file's header.
 #include <cstddef>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,6 +29,35 @@ std::string header_line(const std::vector<ColumnSpec>& cols);
 
 /// One value in a column's format.
 std::string format_value(const ColumnSpec& col, double v);
+
+/// A CSV file written one flushed line at a time (a killed writer leaves whole lines). kNew
+/// starts the file with its header; kAppend continues what is there (a restarted process
+/// continues its file) and writes the header only when the file is new or empty.
+class CsvLines {
+ public:
+  enum class Mode { kNew, kAppend };
+  /// Throws RecordError when `path` cannot be opened.
+  CsvLines(const std::string& path, const std::string& header, Mode mode);
+  ~CsvLines();
+  CsvLines(const CsvLines&) = delete;
+  CsvLines& operator=(const CsvLines&) = delete;
+  void write(const std::string& line);
+
+ private:
+  std::FILE* f_ = nullptr;
+};
+
+/// A CsvLines of records of type Row, each line made by `Format`.
+template <class Row, std::string (*Format)(const Row&)>
+class RowWriter {
+ public:
+  RowWriter(const std::string& path, const std::string& header, CsvLines::Mode mode)
+      : lines_(path, header, mode) {}
+  void write(const Row& r) { lines_.write(Format(r)); }
+
+ private:
+  CsvLines lines_;
+};
 
 /// Splits one CSV line at the commas outside double quotes (quotes are kept in the fields).
 std::vector<std::string> split_fields(const std::string& line);
@@ -57,5 +87,18 @@ class CsvFile {
   std::vector<std::string> header_;
   std::vector<std::vector<std::string>> rows_;
 };
+
+/// The rows of a file whose columns are all numbers: `cols` is the format's table (entries with
+/// a `spec`), `set(row, column, value)` stores one value. Throws RecordError naming a missing
+/// column or a malformed number.
+template <class Row, class Column, class Set>
+std::vector<Row> numeric_rows(const CsvFile& f, const std::vector<Column>& cols, Set set) {
+  std::vector<std::size_t> at;
+  for (const auto& c : cols) at.push_back(f.column(c.spec.name));
+  std::vector<Row> out(f.rows());
+  for (std::size_t i = 0; i < f.rows(); ++i)
+    for (std::size_t k = 0; k < cols.size(); ++k) set(out[i], cols[k], f.number(i, at[k]));
+  return out;
+}
 
 }  // namespace maptr::records

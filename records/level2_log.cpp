@@ -8,13 +8,8 @@ const char* const kCount = "%.0f";
 const char* const kReal = "%g";  // the default text form of a double in a C++ stream
 
 std::vector<Level2Record> rows_of(const CsvFile& f) {
-  const auto& cols = level2_columns();
-  std::vector<std::size_t> at;
-  for (const auto& c : cols) at.push_back(f.column(c.spec.name));
-  std::vector<Level2Record> out(f.rows());
-  for (std::size_t i = 0; i < f.rows(); ++i)
-    for (std::size_t k = 0; k < cols.size(); ++k) cols[k].set(out[i], f.number(i, at[k]));
-  return out;
+  return numeric_rows<Level2Record>(f, level2_columns(),
+                                    [](Level2Record& r, const Level2Column& c, double v) { c.set(r, v); });
 }
 
 /// The column of member m, whatever its number type.
@@ -55,13 +50,8 @@ std::string format_level2_record(const Level2Record& r) {
   return out + "\n";
 }
 
-Level2LogWriter::Level2LogWriter(const std::string& path) {
-  const bool is_new = !std::ifstream(path).good();
-  out_.open(path, std::ios::app);
-  if (out_ && is_new) out_ << header_line(specs()) << std::flush;
-}
-
-void Level2LogWriter::write(const Level2Record& r) { out_ << format_level2_record(r) << std::flush; }
+Level2LogWriter::Level2LogWriter(const std::string& path)
+    : RowWriter(path, header_line(specs()), CsvLines::Mode::kAppend) {}
 
 std::vector<Level2Record> read_level2_log(const std::string& path) {
   return rows_of(CsvFile::read(path, path.substr(path.find_last_of('/') + 1)));

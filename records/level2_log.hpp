@@ -2,7 +2,6 @@
 // level2-L.csv / level2-R.csv: every Level-2 decision of one group controller (appended: a
 // restarted controller continues its file): one row per control::Level2Decision, status codes
 // control::Level2Status values.
-#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -31,16 +30,10 @@ std::string level2_log_path(const std::string& run_dir, int side);
 /// One decision as a line of the log (with its newline).
 std::string format_level2_record(const Level2Record& r);
 
-/// Appends decisions to a side's log; writes the header when the file is new.
-class Level2LogWriter {
- public:
+/// Appends decisions to a side's log; writes the header when the file is new. Throws
+/// RecordError when `path` cannot be written.
+struct Level2LogWriter : RowWriter<Level2Record, format_level2_record> {
   explicit Level2LogWriter(const std::string& path);
-  /// False when the file could not be opened (the controller runs on without its log).
-  explicit operator bool() const { return static_cast<bool>(out_); }
-  void write(const Level2Record& r);
-
- private:
-  std::ofstream out_;
 };
 
 /// Reads a side's log by column name; throws RecordError naming a missing column or a

@@ -11,13 +11,8 @@ const char* const kSix = "%.6g";
 const char* const kNine = "%.9g";
 
 std::vector<TraceRow> rows_of(const CsvFile& f) {
-  const auto& cols = trace_columns();
-  std::vector<std::size_t> at;
-  for (const auto& c : cols) at.push_back(f.column(c.spec.name));
-  std::vector<TraceRow> out(f.rows());
-  for (std::size_t i = 0; i < f.rows(); ++i)
-    for (std::size_t k = 0; k < cols.size(); ++k) out[i].*cols[k].value = f.number(i, at[k]);
-  return out;
+  return numeric_rows<TraceRow>(f, trace_columns(),
+                                [](TraceRow& r, const TraceColumn& c, double v) { r.*c.value = v; });
 }
 }  // namespace
 
@@ -78,20 +73,7 @@ std::string format_trace_row(const TraceRow& r) {
   return out + "\n";
 }
 
-TraceWriter::TraceWriter(const std::string& path) : f_(std::fopen(path.c_str(), "w")) {
-  if (!f_) throw RecordError("cannot write the trace " + path);
-  std::fputs(trace_header().c_str(), f_);
-  std::fflush(f_);
-}
-
-TraceWriter::~TraceWriter() {
-  if (f_) std::fclose(f_);
-}
-
-void TraceWriter::write(const TraceRow& r) {
-  std::fputs(format_trace_row(r).c_str(), f_);
-  std::fflush(f_);
-}
+TraceWriter::TraceWriter(const std::string& path) : RowWriter(path, trace_header(), CsvLines::Mode::kNew) {}
 
 std::vector<TraceRow> read_trace(const std::string& path) { return rows_of(CsvFile::read(path, kFile)); }
 

@@ -42,18 +42,10 @@ std::string trace_header();
 /// One row of trace.csv as text (with its newline).
 std::string format_trace_row(const TraceRow& r);
 
-/// Writes trace.csv: the header at construction, then one flushed line per row.
-class TraceWriter {
- public:
-  /// Throws RecordError when `path` cannot be written.
+/// Writes trace.csv: the header at construction, then one flushed line per row. Throws
+/// RecordError when `path` cannot be written.
+struct TraceWriter : RowWriter<TraceRow, format_trace_row> {
   explicit TraceWriter(const std::string& path);
-  ~TraceWriter();
-  TraceWriter(const TraceWriter&) = delete;
-  TraceWriter& operator=(const TraceWriter&) = delete;
-  void write(const TraceRow& r);
-
- private:
-  std::FILE* f_ = nullptr;
 };
 
 /// Reads trace.csv by column name. Throws RecordError naming a missing column or a malformed

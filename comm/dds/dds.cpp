@@ -154,9 +154,11 @@ const char* profile_name(Profile p, bool writer) {
   return writer ? "maptr_latched_writer" : "maptr_latched_reader";
 }
 
-std::runtime_error missing_profile(const char* name) {
-  return std::runtime_error(std::string("DDS QoS profile '") + name + "' not found in " +
-                            qos_profiles_file());
+/// Throws when the QoS profile `name` could not be read (`rc` of its look-up).
+void check_profile(ReturnCode_t rc, const char* name) {
+  if (rc != ReturnCode_t::RETCODE_OK)
+    throw std::runtime_error(std::string("DDS QoS profile '") + name + "' not found in " +
+                             qos_profiles_file());
 }
 
 }  // namespace
@@ -166,16 +168,11 @@ std::string qos_profiles_file() {
   return exe_dir() + "/maptr_qos.xml";
 }
 
-dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l) {
-  return writer(t, p, l, 0);
-}
-
 dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l,
                                      int32_t reader_filters) {
   load_qos_profiles();
   dds::DataWriterQos q;
-  if (pub_->get_datawriter_qos_from_profile(profile_name(p, true), q) != ReturnCode_t::RETCODE_OK)
-    throw missing_profile(profile_name(p, true));
+  check_profile(pub_->get_datawriter_qos_from_profile(profile_name(p, true), q), profile_name(p, true));
   if (reader_filters > 0) {
     q.writer_resource_limits().reader_filters_allocation.initial = static_cast<size_t>(reader_filters);
     q.writer_resource_limits().reader_filters_allocation.maximum = static_cast<size_t>(reader_filters);
@@ -202,16 +199,11 @@ void Participant::add_latched_ack_locator(dds::DataWriterQos& q) const {
   q.endpoint().unicast_locator_list.push_back(*latched_ack_);
 }
 
-dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::DataReaderListener* l) {
-  return reader(t, p, l, 0);
-}
-
 dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::DataReaderListener* l,
                                      int32_t depth) {
   load_qos_profiles();
   dds::DataReaderQos q;
-  if (sub_->get_datareader_qos_from_profile(profile_name(p, false), q) != ReturnCode_t::RETCODE_OK)
-    throw missing_profile(profile_name(p, false));
+  check_profile(sub_->get_datareader_qos_from_profile(profile_name(p, false), q), profile_name(p, false));
   if (depth > 0) {
     q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
     q.history().depth = depth;

@@ -318,20 +318,19 @@ class Participant {
   /// reader that has UDP only (maptr top) can then acknowledge. A reliable Fast DDS writer sends
   /// a late-joining reader neither the history nor new samples until that reader has
   /// acknowledged once, and such a reader's acknowledgements to a shared-memory locator are lost.
+  ///
+  /// With `reader_filters` > 0, the writer evaluates the content filters of up to that many
+  /// readers before it sends (writer-side filtering, comm/lockstep/tick_filter.hpp); 0: none,
+  /// each reader filters itself.
   eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* t, Profile p,
-                                             eprosima::fastdds::dds::DataWriterListener* l = nullptr);
-  /// A writer that evaluates the content filters of up to `reader_filters` readers before it
-  /// sends (writer-side filtering, comm/lockstep/tick_filter.hpp); 0: none, each reader filters itself.
-  eprosima::fastdds::dds::DataWriter* writer(eprosima::fastdds::dds::Topic* t, Profile p,
-                                             eprosima::fastdds::dds::DataWriterListener* l,
-                                             int32_t reader_filters);
-  /// A reader of a topic or of a filtered view of one (a ContentFilteredTopic).
+                                             eprosima::fastdds::dds::DataWriterListener* l = nullptr,
+                                             int32_t reader_filters = 0);
+  /// A reader of a topic or of a filtered view of one (a ContentFilteredTopic). With `depth` > 0
+  /// its history keeps the last `depth` samples (a recorder's, deeper than what the fleet's
+  /// writers send in one burst); 0: the profile's history.
   eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::TopicDescription* t, Profile p,
-                                             eprosima::fastdds::dds::DataReaderListener* l);
-  /// A reader of profile `p` whose history keeps the last `depth` samples (a recorder's, deeper
-  /// than what the fleet's writers send in one burst).
-  eprosima::fastdds::dds::DataReader* reader(eprosima::fastdds::dds::TopicDescription* t, Profile p,
-                                             eprosima::fastdds::dds::DataReaderListener* l, int32_t depth);
+                                             eprosima::fastdds::dds::DataReaderListener* l = nullptr,
+                                             int32_t depth = 0);
   eprosima::fastdds::dds::DomainParticipant* raw() { return dp_; }
   const DdsOptions& options() const { return o_; }
 

@@ -7,8 +7,6 @@
 #include <cstddef>
 #include <vector>
 
-#include "config/settings.hpp"
-
 namespace maptr::deploy::fleet {
 
 struct FleetConfig {
@@ -101,8 +99,5 @@ struct FleetConfig {
     return restart_ready_base_s + restart_ready_per_agent_s * agents;
   }
 };
-
-/// The launcher's settings (a default FleetConfig), for `maptr fields --settings`.
-std::vector<config::Setting> fleet_settings();
 
 }  // namespace maptr::deploy::fleet

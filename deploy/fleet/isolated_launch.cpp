@@ -29,13 +29,13 @@ volatile std::sig_atomic_t g_stop = 0;
 void on_stop_signal(int) { g_stop = 1; }
 
 /// The child: runs launch() (which writes RUN_DIR/summary.json) and exits.
-[[noreturn]] void run_child(const IsolatedLaunch& l, pid_t parent) {
+[[noreturn]] void run_child(const LaunchOptions& o, const std::string& output_file, pid_t parent) {
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (getppid() != parent) _exit(1);
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
-  if (!l.output_file.empty()) {
-    const int fd = ::open(l.output_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (!output_file.empty()) {
+    const int fd = ::open(output_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       dup2(fd, 1);
       dup2(fd, 2);
@@ -45,18 +45,12 @@ void on_stop_signal(int) { g_stop = 1; }
   try {
     auto log = std::make_shared<spdlog::logger>(
         "launcher",
-        std::make_shared<spdlog::sinks::basic_file_sink_mt>(l.run_dir + "/logs/launcher.log", true));
+        std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.run_dir + "/logs/launcher.log", true));
     log->flush_on(spdlog::level::info);
-    LaunchOptions lo;
-    lo.scenario = l.scenario;
-    lo.run_dir = l.run_dir;
-    lo.bin_dir = l.bin_dir;
-    lo.domain = l.domain;
-    lo.progress = false;
-    launch(lo, *log);
+    launch(o, *log);
     log->flush();
   } catch (const std::exception& e) {
-    records::write_json_file(records::summary_path(l.run_dir),
+    records::write_json_file(records::summary_path(o.run_dir),
                              json{{"status", std::string("aborted: ") + e.what()}});
     rc = 1;
   }
@@ -79,7 +73,10 @@ int wait_child(pid_t pid) {
 
 }  // namespace
 
-json launch_isolated(const IsolatedLaunch& l, const LaunchWatcher& watch) {
+json launch_isolated(const LaunchOptions& options, const std::string& output_file,
+                     const LaunchWatcher& watch) {
+  LaunchOptions l = options;
+  l.progress = false;
   std::error_code ec;
   fs::remove_all(l.run_dir, ec);  // a stale wear ledger would be resumed by the group controllers
   fs::create_directories(l.run_dir + "/logs");
@@ -87,7 +84,7 @@ json launch_isolated(const IsolatedLaunch& l, const LaunchWatcher& watch) {
   const pid_t parent = getpid();
   const pid_t pid = fork();  // the watcher thread starts after the fork
   if (pid < 0) return {{records::summary_key::kStatus, "aborted: fork failed"}};
-  if (pid == 0) run_child(l, parent);
+  if (pid == 0) run_child(l, output_file, parent);
   std::atomic<bool> done{false};
   std::thread watcher;
   if (watch) watcher = std::thread([&] { watch(done); });

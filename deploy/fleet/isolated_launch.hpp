@@ -7,24 +7,18 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "config/scenario.hpp"
+#include "deploy/fleet/launcher.hpp"
 
 namespace maptr::deploy {
-
-struct IsolatedLaunch {
-  config::Scenario scenario;
-  std::string run_dir;      ///< emptied and created
-  std::string bin_dir;      ///< where maptr_plant & co. are
-  int domain = 0;           ///< DDS domain id
-  std::string output_file;  ///< the child's stdout and stderr go here ("": inherited)
-};
 
 /// Runs while the fleet runs, in a thread of the parent; `done` turns true when it has ended.
 using LaunchWatcher = std::function<void(const std::atomic<bool>& done)>;
 
-/// Runs the fleet in a forked child and returns its summary.json; a child that ended without
-/// one gives {"status": "aborted: ..."} saying how it ended.
-nlohmann::json launch_isolated(const IsolatedLaunch& l, const LaunchWatcher& watch = {});
+/// Runs the fleet of `o` in a forked child and returns its summary.json; a child that ended
+/// without one gives {"status": "aborted: ..."} saying how it ended. o.run_dir is emptied and
+/// created; the child's stdout and stderr go to `output_file` ("": inherited).
+nlohmann::json launch_isolated(const LaunchOptions& o, const std::string& output_file = "",
+                               const LaunchWatcher& watch = {});
 
 /// Ctrl-C / SIGTERM from now on: the fleet running now ends (its launcher is sent SIGTERM) and
 /// stop_requested() turns true, so that no further fleet starts.

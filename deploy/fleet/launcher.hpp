@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config/scenario.hpp"
@@ -35,6 +36,16 @@ struct LaunchOptions {
   /// Wall time without a new tick or fault gate from the plant after which the run is ended as
   /// stalled, s; 0: FleetConfig::stall_s.
   double stall_s = 0.0;
+
+  /// The options of a fleet that takes every other option's default.
+  static LaunchOptions of(config::Scenario scenario, std::string run_dir, std::string bin_dir, int domain) {
+    LaunchOptions o;
+    o.scenario = std::move(scenario);
+    o.run_dir = std::move(run_dir);
+    o.bin_dir = std::move(bin_dir);
+    o.domain = domain;
+    return o;
+  }
 };
 
 /// Why options `o` cannot run together (e.g. --secure with a fault of the discovery server it

@@ -172,8 +172,8 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
   // The hypervisor's share of this machine's CPU time during the fleet and during the floor: on
   // a shared VM, what makes one sitting's ratios differ from another's.
   const auto machine0 = read_machine_cpu();
-  const records::Summary sum(launch_isolated({s, run_dir, o.bin_dir, o.domain, run_dir + "/maptr.out"},
-                                             [&](const std::atomic<bool>& done) {
+  const records::Summary sum(launch_isolated(LaunchOptions::of(s, run_dir, o.bin_dir, o.domain),
+                                             run_dir + "/maptr.out", [&](const std::atomic<bool>& done) {
                                                mem = sample_memory(run_dir, done);
                                                cost = watch_fleet_cost(run_dir, cost_window(s.ticks()), done);
                                              }));

@@ -61,10 +61,10 @@ int bench_tick(const BenchOptions& o) {
   s.validate();
   const std::string run_dir = o.out + "/runs/tick-N" + std::to_string(n);
   FleetCost cost;
-  const records::Summary sum(
-      launch_isolated({s, run_dir, o.bin_dir, o.domain, ""}, [&](const std::atomic<bool>& done) {
-        cost = watch_fleet_cost(run_dir, cost_window(s.ticks()), done);
-      }));
+  const records::Summary sum(launch_isolated(LaunchOptions::of(s, run_dir, o.bin_dir, o.domain), "",
+                                             [&](const std::atomic<bool>& done) {
+                                               cost = watch_fleet_cost(run_dir, cost_window(s.ticks()), done);
+                                             }));
   const FloorResult floor = measure_floor(n + 3);  // agents, 2 groups and central answer each tick
   const double tick_us = sum.tick_timing("tick").median;
   std::ostringstream md;

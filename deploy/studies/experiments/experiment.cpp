@@ -45,7 +45,7 @@ bool Experiment::reusable(const Run& r, const config::Scenario& s) const {
 }
 
 void Experiment::launch_with_retry(Run& r, const std::string& head) {
-  IsolatedLaunch l{r.s, r.dir, o_.bin_dir, o_.domain, ""};
+  LaunchOptions l = LaunchOptions::of(r.s, r.dir, o_.bin_dir, o_.domain);
   r.summary = records::Summary(launch_isolated(l));
   // A launcher that died or a fleet that never started (discovery) is not a result of the
   // experiment: try once more, on the next DDS domain (other ports), and say so.
