@@ -1,8 +1,8 @@
 #pragma once
 // The result tables of the studies (`maptr experiment`, `maptr bench`) and their series: one set
 // of rows (JSON objects keyed by column) written as CSV (keys as the header), as a markdown table
-// (human headers) and read back from the CSV. A study declares its columns; the files' layout,
-// number formats and writing live here.
+// (human headers) and read back from the CSV. Each table's columns are in
+// records/study_columns.hpp; the files' layout, number formats and writing live here.
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>

@@ -154,11 +154,17 @@ const char* profile_name(Profile p, bool writer) {
   return writer ? "maptr_latched_writer" : "maptr_latched_reader";
 }
 
-/// Throws when the QoS profile `name` could not be read (`rc` of its look-up).
-void check_profile(ReturnCode_t rc, const char* name) {
-  if (rc != ReturnCode_t::RETCODE_OK)
+/// The QoS of profile `p` from the profiles file (loaded once): `get(name, qos)` is the
+/// publisher's or subscriber's look-up. Throws when the file lacks the profile.
+template <class Qos, class Get>
+Qos profile_qos(Profile p, bool writer, Get get) {
+  load_qos_profiles();
+  Qos q;
+  const char* name = profile_name(p, writer);
+  if (get(name, q) != ReturnCode_t::RETCODE_OK)
     throw std::runtime_error(std::string("DDS QoS profile '") + name + "' not found in " +
                              qos_profiles_file());
+  return q;
 }
 
 }  // namespace
@@ -170,9 +176,9 @@ std::string qos_profiles_file() {
 
 dds::DataWriter* Participant::writer(dds::Topic* t, Profile p, dds::DataWriterListener* l,
                                      int32_t reader_filters) {
-  load_qos_profiles();
-  dds::DataWriterQos q;
-  check_profile(pub_->get_datawriter_qos_from_profile(profile_name(p, true), q), profile_name(p, true));
+  auto q = profile_qos<dds::DataWriterQos>(p, true, [this](const char* n, dds::DataWriterQos& w) {
+    return pub_->get_datawriter_qos_from_profile(n, w);
+  });
   if (reader_filters > 0) {
     q.writer_resource_limits().reader_filters_allocation.initial = static_cast<size_t>(reader_filters);
     q.writer_resource_limits().reader_filters_allocation.maximum = static_cast<size_t>(reader_filters);
@@ -201,9 +207,9 @@ void Participant::add_latched_ack_locator(dds::DataWriterQos& q) const {
 
 dds::DataReader* Participant::reader(dds::TopicDescription* t, Profile p, dds::DataReaderListener* l,
                                      int32_t depth) {
-  load_qos_profiles();
-  dds::DataReaderQos q;
-  check_profile(sub_->get_datareader_qos_from_profile(profile_name(p, false), q), profile_name(p, false));
+  auto q = profile_qos<dds::DataReaderQos>(p, false, [this](const char* n, dds::DataReaderQos& r) {
+    return sub_->get_datareader_qos_from_profile(n, r);
+  });
   if (depth > 0) {
     q.history().kind = dds::KEEP_LAST_HISTORY_QOS;
     q.history().depth = depth;

@@ -33,6 +33,17 @@ constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitDegraded = 3
   throw ScenarioError("--" + action + " " + spec.substr(0, 80) + ": " + why);
 }
 
+/// `text` read whole as a number into `out`; false when it is empty, not a number or has more.
+bool whole_number(const std::string& text, double& out) {
+  std::size_t used = 0;
+  try {
+    out = std::stod(text, &used);
+  } catch (...) {
+    return false;
+  }
+  return used != 0 && used == text.size();
+}
+
 /// Reads --fault's TARGET:MODE[=VALUE] into f (the time is read by add_faults).
 void read_fault_mode(const std::string& spec, const std::string& head, config::FaultSpec& f) {
   const auto colon = head.find(':');
@@ -44,13 +55,7 @@ void read_fault_mode(const std::string& spec, const std::string& head, config::F
   f.mode = mode.substr(0, eq);
   if (eq == std::string::npos) return;
   const std::string value = mode.substr(eq + 1);
-  std::size_t used = 0;
-  try {
-    f.value = std::stod(value, &used);
-  } catch (...) {
-    used = 0;
-  }
-  if (used == 0 || used != value.size())
+  if (!whole_number(value, f.value))
     bad_option("fault", spec, "faults[].value = " + value.substr(0, 80) + ": must be a number");
 }
 
@@ -69,13 +74,7 @@ void add_faults(Scenario& s, const std::vector<std::string>& specs, const std::s
     else
       f.target = spec.substr(0, at);
     const std::string time = spec.substr(at + 1);
-    std::size_t used = 0;
-    try {
-      f.at_s = std::stod(time, &used);
-    } catch (...) {
-      used = 0;
-    }
-    if (used == 0 || used != time.size() || !std::isfinite(f.at_s) || f.at_s < 0)
+    if (!whole_number(time, f.at_s) || !std::isfinite(f.at_s) || f.at_s < 0)
       bad_option(action, spec, "faults[].at_s = " + time.substr(0, 80) + ": must be a finite number of seconds, at least 0");
     if ((action == "pause" || action == "resume") && f.target == "plant")
       bad_option(action, spec, "faults[].target = plant: the plant cannot be paused: it is the fleet's clock");

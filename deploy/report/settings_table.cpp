@@ -1,4 +1,3 @@
-#include "config/core_configs.hpp"
 #include "control/central_core.hpp"
 #include "control/group_core.hpp"
 #include "control/level2/solver.hpp"
@@ -11,13 +10,12 @@
 // here too (tests/unit/test_reference.cpp fails otherwise).
 namespace maptr::deploy::report {
 
-std::vector<config::Setting> all_settings() {
+namespace {
+
+/// The launcher's waits, waves and leases (FleetConfig).
+std::vector<config::Setting> launcher_settings() {
   using config::setting_value;
   const fleet::FleetConfig launcher;
-  const plant::PlantNodeConfig plant;
-  const control::CentralConfig central;
-  const control::GroupConfig group;
-  const control::Level2SolverConfig level2;
   // clang-format off
   return {
       {"launcher.discovery_timeout_base_s", setting_value(launcher.discovery_timeout_base_s), "s",
@@ -71,7 +69,17 @@ std::vector<config::Setting> all_settings() {
       {"launcher.progress_period_s", setting_value(launcher.progress_period_s), "s", "period of the progress line"},
       {"launcher.discovery_poll", setting_value(launcher.discovery_poll), "ms", "poll period of the discovery loop"},
       {"launcher.run_poll", setting_value(launcher.run_poll), "ms", "poll period of the run loop"},
-      {"launcher.gate_poll", setting_value(launcher.gate_poll), "ms", "poll period of a fault gate's wait"},
+      {"launcher.gate_poll", setting_value(launcher.gate_poll), "ms", "poll period of a fault gate's wait"}
+  };
+  // clang-format on
+}
+
+/// The plant's bounds, deadlines and waits (PlantNodeConfig).
+std::vector<config::Setting> plant_settings() {
+  using config::setting_value;
+  const plant::PlantNodeConfig plant;
+  // clang-format off
+  return {
       {"plant.deadline_base_s", setting_value(plant.deadline_base_s), "s",
        "the barrier's last-resort deadline per tick: base + per_agent x N (slow is not dead)"},
       {"plant.deadline_per_agent_s", setting_value(plant.deadline_per_agent_s), "s", "see deadline_base_s"},
@@ -104,7 +112,19 @@ std::vector<config::Setting> all_settings() {
        "longest wait for a sample in discovery"},
       {"plant.discovery_report", setting_value(plant.discovery_report), "ms",
        "discovery without progress this long: the log names what is not matched"},
-      {"plant.linger", setting_value(plant.linger), "ms", "time the last tick gets to reach every reader"},
+      {"plant.linger", setting_value(plant.linger), "ms", "time the last tick gets to reach every reader"}
+  };
+  // clang-format on
+}
+
+/// Central's path follower, the group core's cruise band and the Level-2 solver's tolerances.
+std::vector<config::Setting> core_settings() {
+  using config::setting_value;
+  const control::CentralConfig central;
+  const control::GroupConfig group;
+  const control::Level2SolverConfig level2;
+  // clang-format off
+  return {
       {"central.min_lookahead_m", setting_value(central.min_lookahead_m), "m",
        "the path follower's shortest look-ahead L_min (L = max(4 |v| / K, L_min))"},
       {"central.search_ahead_m", setting_value(central.search_ahead_m), "m",
@@ -117,9 +137,17 @@ std::vector<config::Setting> all_settings() {
       {"level2.max_iter", setting_value(level2.max_iter), "",
        "Ipopt's iterations; an unconverged solve's integer choice still compares every count"},
       {"level2.fd_hessian", setting_value(level2.fd_hessian), "",
-       "exact Hessian by finite differences (false: limited-memory BFGS)"},
+       "exact Hessian by finite differences (false: limited-memory BFGS)"}
   };
   // clang-format on
+}
+
+}  // namespace
+
+std::vector<config::Setting> all_settings() {
+  std::vector<config::Setting> all = launcher_settings();
+  for (auto part : {plant_settings(), core_settings()}) all.insert(all.end(), part.begin(), part.end());
+  return all;
 }
 
 }  // namespace maptr::deploy::report

@@ -62,21 +62,4 @@ nlohmann::json fleet_cost_json(const FleetCost& c) {
           {"cpu_us_tick_ds", ds.cpu_us_per_tick}};
 }
 
-const std::vector<CostColumn>& fleet_cost_columns() {
-  static const std::vector<CostColumn> cols = {{"cost_ticks", "cost window ticks", 0},
-                                               {"cs_tick_plant", "cs / tick plant", 1},
-                                               {"cs_tick_agent", "cs / tick agent (mean)", 2},
-                                               {"cs_tick_agents", "cs / tick agents (all)", 1},
-                                               {"cs_tick_group", "cs / tick group (mean)", 1},
-                                               {"cs_tick_central", "cs / tick central", 1},
-                                               {"cs_tick_ds", "cs / tick discovery server", 2},
-                                               {"cpu_us_tick_plant", "CPU µs / tick plant", 0},
-                                               {"cpu_us_tick_agent", "CPU µs / tick agent (mean)", 0},
-                                               {"cpu_us_tick_agents", "CPU µs / tick agents (all)", 0},
-                                               {"cpu_us_tick_group", "CPU µs / tick group (mean)", 0},
-                                               {"cpu_us_tick_central", "CPU µs / tick central", 0},
-                                               {"cpu_us_tick_ds", "CPU µs / tick discovery server", 1}};
-  return cols;
-}
-
 }  // namespace maptr::deploy

@@ -53,14 +53,4 @@ FleetCost fleet_cost(const std::vector<FleetProc>& procs, const FleetSample& sta
 /// (total), group (mean), central, ds), zeros when not measured.
 nlohmann::json fleet_cost_json(const FleetCost& c);
 
-/// A bench table column of fleet_cost_json: key, heading, decimals.
-struct CostColumn {
-  const char* key;
-  const char* head;
-  int prec;
-};
-
-/// The columns of fleet_cost_json, in table order.
-const std::vector<CostColumn>& fleet_cost_columns();
-
 }  // namespace maptr::deploy

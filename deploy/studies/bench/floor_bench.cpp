@@ -9,6 +9,7 @@
 #include "deploy/studies/bench/bench_parts.hpp"
 #include "deploy/studies/bench/floor.hpp"
 #include "records/result_table.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
@@ -18,17 +19,6 @@ using json = nlohmann::json;
 /// Processes besides the agents that answer every tick: 2 groups and central.
 constexpr int kAnswersBesideAgents = 3;
 constexpr long kRounds = 2000, kWarmup = 200;
-
-std::vector<records::ResultColumn> floor_columns() {
-  return {{"agents", "N", 0},
-          {"workers", "workers W", 0},
-          {"touch_kb", "KiB touched / worker / round", 0},
-          {"median_us", "round median µs", 0},
-          {"p99_us", "round p99 µs", 0},
-          {"cpu_us_per_round", "CPU µs / round", 0},
-          {"cpu_us_per_worker_round", "CPU µs / worker / round", 1},
-          {"cs_per_round", "cs / round", 1}};
-}
 
 std::string floor_plot_body(const std::vector<int>& touch_kb) {
   std::string cmd =
@@ -52,7 +42,7 @@ std::string floor_plot_body(const std::vector<int>& touch_kb) {
 int bench_floor(const BenchOptions& o) {
   std::filesystem::create_directories(o.out);
   records::ResultTable t;
-  t.cols = floor_columns();
+  t.cols = records::columns::bench_floor();
   records::ResultTableWriter csv(o.out + "/floor.csv", t.cols);
   for (int kb : o.touch_kb)  // a working set's rows together: its curves are unbroken
     for (int n : o.agents) {

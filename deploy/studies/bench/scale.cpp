@@ -17,6 +17,7 @@
 #include "deploy/studies/bench/scale_verdict.hpp"
 #include "records/junit.hpp"
 #include "records/result_table.hpp"
+#include "records/study_columns.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::deploy {
@@ -32,45 +33,6 @@ constexpr std::size_t kStatusMdChars = 70;
 constexpr double kKiB = 1024.0;
 /// Processes besides the agents that answer every tick: 2 groups and central.
 constexpr int kAnswersBesideAgents = 3;
-
-/// The columns of scale.csv (kB, µs) and of scale.md (MB, ms).
-std::vector<records::ResultColumn> columns() {
-  std::vector<records::ResultColumn> cols = {{"agents", "N", 0},
-                                             {"mode", "mode", -1},
-                                             {"hosts", "hosts", 0},
-                                             {"started_by", "started by", -1},
-                                             {"status", "status", -1, false, true},
-                                             {"status_text", "status", -1, true, false},
-                                             {"discovery_s", "discovery s", 2},
-                                             {"ticks_per_wall_s", "ticks / wall s", 1},
-                                             {"real_time_factor", "RTF (100 Hz)", 2},
-                                             {"cpu_s_per_sim_s", "CPU s / sim s", 2},
-                                             {"pss_agent_median_kB", "", 0, false, true},
-                                             {"pss_agent_median_MB", "PSS agent median MB", 1, true, false},
-                                             {"pss_agent_max_kB", "", 0, false, true},
-                                             {"pss_agent_max_MB", "PSS agent max MB", 1, true, false},
-                                             {"pss_total_kB", "", 0, false, true},
-                                             {"pss_total_MB", "PSS total MB", 0, true, false},
-                                             {"samples_per_tick", "DDS samples / tick", 0},
-                                             {"bridge_bytes_per_tick", "bridge bytes / tick", 0},
-                                             {"tick_median_us", "", 0, false, true},
-                                             {"tick_median_ms", "tick median ms", 2, true, false},
-                                             {"tick_p99_us", "", 0, false, true},
-                                             {"tick_p99_ms", "tick p99 ms", 2, true, false},
-                                             {"floor_median_us", "floor median µs", 0},
-                                             {"x_floor", "tick / floor", 1},
-                                             {"floor_cs_per_round", "floor cs / round", 1},
-                                             {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
-  for (const auto& c : fleet_cost_columns()) cols.push_back({c.key, c.head, c.prec});
-  // last: earlier columns keep their places
-  cols.push_back({"record", "run.mcap records", -1});
-  cols.push_back({"realtime", "paced to the wall clock", -1});
-  cols.push_back({"tick_filter", "tick filter", -1});
-  cols.push_back({"plant_scheduling", "plant lock-step thread", -1});
-  cols.push_back({"steal_pct_fleet", "CPU steal % fleet", 1});
-  cols.push_back({"steal_pct_floor", "CPU steal % floor", 1});
-  return cols;
-}
 
 /// PSS per agent process the bench draws as its target, MB.
 constexpr double kPssTargetMB = 8.0;
@@ -239,7 +201,7 @@ int bench_scale(const BenchOptions& o) {
   if (o.replot) return replot(o);
   fs::create_directories(o.out);
   records::ResultTable t;
-  t.cols = columns();
+  t.cols = records::columns::bench_scale();
   records::ResultTableWriter csv(o.out + "/scale.csv", t.cols);
   const ScaleThresholds limits{o.min_rtf, o.max_floor_ratio};
   std::vector<std::string> headlines;

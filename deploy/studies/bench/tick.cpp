@@ -9,6 +9,7 @@
 #include "deploy/studies/bench/floor.hpp"
 #include "records/result_table.hpp"
 #include "records/run_files.hpp"
+#include "records/study_columns.hpp"
 #include "records/summary.hpp"
 
 namespace maptr::deploy {
@@ -40,7 +41,7 @@ std::string timing_md(const records::Summary& sum) {
 std::string cost_md(const FleetCost& c) {
   if (!c.measured) return "Cost per process kind: not measured (the run ended before its window).\n";
   records::ResultTable t;
-  for (const auto& col : fleet_cost_columns()) t.cols.push_back({col.key, col.head, col.prec});
+  for (const auto& col : records::columns::bench_fleet_cost()) t.cols.push_back(col);
   t.rows.push_back(fleet_cost_json(c));
   return "Cost per tick by process kind, from /proc over a window of " + std::to_string(c.ticks) +
          " ticks (cs: context switches, over all threads):\n\n" + t.md();

@@ -2,6 +2,7 @@
 #include <sstream>
 
 #include "deploy/studies/experiments/experiment_list.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
@@ -28,21 +29,6 @@ Conditions conditions(bool q) {
            {"13.2kg-fixed", "13.2 kg for every N", 0, 13.2}},
           10.0,
           120.0};
-}
-
-std::vector<records::ResultColumn> columns() {
-  return {{"series", "payload", -1},
-          {"agents", "N", 0},
-          {"gross_kg", "gross kg", 1},
-          {"E_NO_kJ", "E_NO kJ", 3},
-          {"E_EC_kJ", "E_EC kJ", 3},
-          column::kSavingPct,
-          {"active_EC_end", "active EC (end)", 0},
-          column::kActiveECMean,
-          column::kEffNO,
-          column::kEffEC,
-          column::kStatusNO,
-          column::kStatusEC};
 }
 
 json row_of(const Series& se, int n, double gross, const RunPair& p) {
@@ -109,7 +95,7 @@ int exp_agents(Experiment& e) {
   const Conditions c = conditions(e.quick());
   e.set_total(static_cast<int>(c.ns.size() * c.series.size() * 2));
   records::ResultTable t;
-  t.cols = columns();
+  t.cols = records::columns::agents();
   for (const auto& se : c.series)
     for (int n : c.ns) {
       const double gross = se.per_agent_kg > 0 ? se.per_agent_kg * n : se.fixed_kg;

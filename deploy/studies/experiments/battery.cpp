@@ -4,6 +4,7 @@
 
 #include "deploy/studies/experiments/experiment_list.hpp"
 #include "deploy/studies/experiments/paper.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
@@ -29,20 +30,6 @@ Conditions conditions(bool q) {
 
 /// The speed falls more than this far below its reference for 5 s: the run ends.
 constexpr double kStopBelowSpeedPct = 5.0;
-
-std::vector<records::ResultColumn> columns() {
-  return {{"mode", "mode", -1},
-          {"lasted_s", "lasted s", 0},
-          {"distance_km", "distance km", 2},
-          {"energy_kJ", "energy kJ", 1},
-          column::kMileage,
-          {"drawn_mAh", "drawn mAh (L)", 0},
-          {"battery_V_end", "V_B at end", 2},
-          {"eff_mean", "eff (mean, 2nd half)", 3},
-          column::kActiveMean,
-          {"end_reason", "end", -1},
-          column::kStatus};
-}
 
 /// What a run gives: how long it lasted and whether it ended by losing its speed.
 struct Outcome {
@@ -117,7 +104,7 @@ int exp_battery(Experiment& e) {
   const Conditions c = conditions(e.quick());
   e.set_total(2);
   records::ResultTable t;
-  t.cols = columns();
+  t.cols = records::columns::battery();
   std::vector<std::pair<std::string, std::string>> files;
   std::filesystem::create_directories(e.dir() + "/series");
   Outcome out[2];

@@ -8,6 +8,7 @@
 
 #include "deploy/fleet/isolated_launch.hpp"
 #include "deploy/studies/experiments/experiment.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
@@ -42,20 +43,6 @@ std::string id_part(const std::string& field, const std::string& value) {
   for (char& ch : id)
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_' && ch != '.') ch = '_';
   return id;
-}
-
-std::vector<records::ResultColumn> columns() {
-  return {{"variant", "variant", -1},
-          column::kStatus,
-          {"energy_J", "energy J", 1},
-          {"saving_pct", "saving vs first %", 2},
-          {"mileage_m_per_J", "mileage m/J", 4},
-          column::kDistance,
-          column::kCrossTrackMax,
-          column::kFinalPositionError,
-          {"mean_active_agents", "mean active agents", 2},
-          {"discharge_mAh", "battery discharge mAh (L+R)", 1},
-          column::kTraceSha256};
 }
 
 /// A row's number, NaN when the run did not give it (null).
@@ -147,7 +134,7 @@ int run_compare(const CompareOptions& c, const std::vector<CompareVariant>& vari
   std::fprintf(stderr, "maptr: compare %s: %zu variants, results in %s\n", c.scenario.c_str(),
                variants.size(), c.o.out.c_str());
   records::ResultTable t;
-  t.cols = columns();
+  t.cols = records::columns::compare();
   std::vector<std::pair<std::string, std::string>> files;
   double first_energy = kNaN;
   int rc = 0;

@@ -3,27 +3,11 @@
 #include <filesystem>
 
 #include "deploy/studies/experiments/experiment_list.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
 namespace {
-
-std::vector<records::ResultColumn> columns(const std::string& xkey, const std::string& xhead) {
-  return {{xkey, xhead, 1},
-          {"energy_kJ", "energy kJ", 2},
-          column::kMileage,
-          {"eff_cruise", "eff (mean, 2nd half)", 3},
-          column::kActiveMean,
-          column::kActiveEnd,
-          {"V_applied_V", "applied V (2nd half)", 2},
-          {"V_over_VB", "V/V_B", 3},
-          {"v_end_mps", "v end m/s", 2},
-          {"l2_decisions", "Level-2 decisions", 0},
-          {"l2_solve_ms", "Ipopt solve ms (median)", 1},
-          {"oracle_differs", "Ipopt != oracle", 0},
-          {"oracle_checked", "oracle checks", 0},
-          column::kStatus};
-}
 
 json row_of(const std::string& xkey, double x, const Run& r) {
   const json l2 = r.level2();
@@ -50,7 +34,7 @@ int ec_time_series(Experiment& e, const std::vector<SeriesVariant>& vars, const 
                    const std::string& xhead, const std::string& intro, const std::string& what) {
   e.set_total(static_cast<int>(vars.size()));
   records::ResultTable t;
-  t.cols = columns(xkey, xhead);
+  t.cols = records::columns::ec_series(xkey, xhead);
   std::vector<std::pair<std::string, std::string>> files;
   std::filesystem::create_directories(e.dir() + "/series");
   for (const auto& v : vars) {

@@ -26,27 +26,6 @@ using json = nlohmann::json;
 using records::fixed;
 using records::num;
 
-/// The columns that several experiments' tables show, declared once (same key, header and
-/// decimals wherever they stand).
-namespace column {
-inline const records::ResultColumn kStatus{"status", "status", -1};
-inline const records::ResultColumn kTraceSha256{"trace_sha256", "trace sha256", -1};
-inline const records::ResultColumn kEnergyKJ{"energy_kJ", "energy kJ", 3};
-inline const records::ResultColumn kMileage{"mileage", "mileage m/J", 4};
-inline const records::ResultColumn kActiveMean{"active_mean", "active (mean, 2nd half)", 2};
-inline const records::ResultColumn kActiveEnd{"active_end", "active (end, L+R)", 0};
-inline const records::ResultColumn kDistance{"distance_m", "distance m", 2};
-inline const records::ResultColumn kCrossTrackMax{"cross_track_max_m", "cross-track max m", 3};
-inline const records::ResultColumn kFinalPositionError{"final_position_error_m", "final position error m", 3};
-inline const records::ResultColumn kEffNO{"eff_NO", "eff NO", 3};
-inline const records::ResultColumn kEffEC{"eff_EC", "eff EC", 3};
-inline const records::ResultColumn kStatusNO{"status_NO", "status NO", -1};
-inline const records::ResultColumn kStatusEC{"status_EC", "status EC", -1};
-inline const records::ResultColumn kActiveECMean{"active_EC_mean", "active EC (mean, 2nd half)", 1};
-inline const records::ResultColumn kSavingPct{"saving_pct", "saving %", 2};
-inline const records::ResultColumn kDetected{"detected", "detected", 0};
-}  // namespace column
-
 class Experiment {
  public:
   explicit Experiment(const ExperimentOptions& o) : o_(o) {}

@@ -4,6 +4,7 @@
 
 #include "deploy/studies/experiments/experiment_list.hpp"
 #include "plant_core/speed_band.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
@@ -36,23 +37,6 @@ config::Scenario scenario(const Experiment& e, const Conditions& c, const KillOr
     for (int j = 0; j < k; ++j)
       s.faults.push_back(config::FaultSpec::of(config::agent_name(side, order[side][j]), "kill", c.kill_at));
   return s;
-}
-
-std::vector<records::ResultColumn> columns() {
-  return {{"killed_per_side", "killed per side", 0},
-          {"tolerance", "tolerance N_i - N_a,i", 0},
-          {"killed", "killed", -1},
-          column::kDetected,
-          {"detect_wall_ms_max", "detection wall ms (max)", 1},
-          {"recovered", "recovered", 0},
-          {"recovered_s_max", "recovered at s (latest)", 2},
-          {"max_speed_error_pct", "max speed error % after kill", 2},
-          {"final_speed_mps", "final speed m/s", 3},
-          {"active_end_L", "active L (end)", 0},
-          {"active_end_R", "active R (end)", 0},
-          column::kEnergyKJ,
-          {"eff_cruise", "eff (2nd half)", 3},
-          column::kStatus};
 }
 
 double max_or(double acc, double v) {
@@ -154,7 +138,7 @@ int exp_failures(Experiment& e) {
   for (int side = 0; side < 2; ++side)
     for (int j = 0; j < kPerSide; ++j) order[side].push_back(j);
   records::ResultTable t;
-  t.cols = columns();
+  t.cols = records::columns::failures();
   std::vector<int> ks = {0};
   int tolerance = -1;
   if (q) ks.push_back(1);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "deploy/studies/experiments/experiment_list.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
@@ -80,24 +81,6 @@ double stop_start(const config::Scenario& s) {
     t += seg.duration_s;
   }
   return s.duration_s;
-}
-
-std::vector<records::ResultColumn> columns() {
-  return {{"mass_kg", "gross kg", 1},
-          {"agents", "faulty agents (side L)", 0},
-          {"mode", "mode", -1},
-          {"mode_index", "mode index", 0, false, true},
-          {"detection", "detection", -1},
-          column::kDetected,
-          {"detect_s_max", "detection s (latest)", 2},
-          {"isolate_s_max", "isolation s (latest)", 2},
-          {"diagnosed", "diagnosed as", -1},
-          {"max_speed_error_pct", "max speed error % after the fault", 2},
-          {"cross_track_max_m", "path error max m", 3},
-          column::kEnergyKJ,
-          {"energy_penalty_J", "energy penalty J (vs fault-free, before the stop)", 0},
-          {"energy_penalty_run_J", "energy penalty J (whole run)", 0},
-          column::kStatus};
 }
 
 /// The run's record of each fault it was given: detection and isolation delays (s after the
@@ -224,7 +207,7 @@ int exp_faults(Experiment& e) {
     total += std::string(c.modes[mi].mode) == "kill" ? 1 : 2;
   e.set_total(static_cast<int>(c.masses.size() * (1 + c.counts.size() * static_cast<std::size_t>(total))));
   records::ResultTable t;
-  t.cols = columns();
+  t.cols = records::columns::faults();
   for (const double mass : c.masses) {
     const Run twin =
         e.run("twin-" + kg_label(mass), kg_label(mass) + " kg fault-free", scenario(e, c, mass, true));

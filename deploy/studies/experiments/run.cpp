@@ -8,6 +8,7 @@
 #include "records/assignments.hpp"
 #include "records/result_table.hpp"
 #include "records/run_files.hpp"
+#include "records/study_columns.hpp"
 #include "records/trace.hpp"
 
 namespace maptr::deploy {
@@ -138,15 +139,6 @@ long long bin_of(double t, double bin_s) {
   return static_cast<long long>(std::floor(t / bin_s + kEdge));
 }
 
-/// The series' columns: the means over a bin (the last row's value for the running sums).
-std::vector<records::ResultColumn> series_columns() {
-  return {{"t_s", "t (s)", 3},         {"v_x_mps", "v (m/s)", 5},
-          {"ref_mps", "ref (m/s)", 5}, {"eff_agent", "eff", 5},
-          {"n_active", "active", 3},   {"battery_V", "battery (V)", 4},
-          {"V_applied_V", "V (V)", 4}, {"discharge_mAh", "mAh", 3},
-          {"energy_kJ", "E (kJ)", 4},  {"distance_m", "distance (m)", 2}};
-}
-
 /// One row of the series: the means of rows [first, end) (the last row for the running sums);
 /// the applied voltage is absent when no bin row had agents driving on both sides.
 json series_row(const std::vector<TraceRow>& t, std::size_t first, std::size_t end, double rad) {
@@ -184,7 +176,7 @@ json series_row(const std::vector<TraceRow>& t, std::size_t first, std::size_t e
 void write_series(const Run& r, const std::string& path, double bin_s) {
   const auto t = trace_of(r);
   records::ResultTable series;
-  series.cols = series_columns();
+  series.cols = records::columns::run_series();
   std::size_t i = 0;
   while (i < t.size()) {
     const long long bin = bin_of(t[i].t_s, bin_s);

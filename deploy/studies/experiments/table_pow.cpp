@@ -4,6 +4,7 @@
 #include "deploy/studies/experiments/experiment_list.hpp"
 #include "deploy/studies/experiments/paper.hpp"
 #include "plant_core/speed_band.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
@@ -17,32 +18,6 @@ struct Conditions {
 Conditions conditions(bool quick) {
   if (quick) return {{13.2, 38.2}, 10.0, 60.0};
   return {{13.2, 18.2, 23.2, 28.2, 33.2, 38.2}, 20.0, 1800.0};
-}
-
-std::vector<records::ResultColumn> columns() {
-  return {{"gross_kg", "gross kg", 1},
-          {"E_NO_kJ", "E_NO kJ", 2},
-          {"E_NO_paper_kJ", "E_NO paper", 2},
-          {"E_EC_kJ", "E_EC kJ", 2},
-          {"E_EC_paper_kJ", "E_EC paper", 2},
-          column::kSavingPct,
-          {"saving_paper_pct", "saving paper", 2},
-          {"active_EC_end", "active EC (end, L+R)", 0},
-          column::kActiveECMean,
-          {"active_paper", "active paper", 0},
-          {"mileage_NO", "mileage NO m/J", 4},
-          {"mileage_NO_paper", "NO paper", 4},
-          {"mileage_EC", "mileage EC m/J", 4},
-          {"mileage_EC_paper", "EC paper", 4},
-          column::kEffNO,
-          column::kEffEC,
-          {"V_over_VB_EC", "V/V_B EC", 3},
-          {"v_end_NO_mps", "v end NO m/s", 2},
-          {"v_end_EC_mps", "v end EC m/s", 2},
-          {"distance_NO_m", "distance NO m", 0, false},
-          {"distance_EC_m", "distance EC m", 0, false},
-          column::kStatusNO,
-          column::kStatusEC};
 }
 
 json row_of(double m, const RunPair& p) {
@@ -137,7 +112,7 @@ int exp_table_pow(Experiment& e) {
   const Conditions c = conditions(e.quick());
   e.set_total(static_cast<int>(c.masses.size()) * 2);
   records::ResultTable t;
-  t.cols = columns();
+  t.cols = records::columns::table_pow();
   std::vector<std::string> not_held;
   for (double m : c.masses) {
     config::Scenario s = e.base();

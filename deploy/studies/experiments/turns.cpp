@@ -14,6 +14,7 @@
 #include "model/motor.hpp"
 #include "model/reach.hpp"
 #include "records/run_files.hpp"
+#include "records/study_columns.hpp"
 #include "records/trace.hpp"
 
 namespace maptr::deploy {
@@ -143,20 +144,6 @@ json loop_row(const std::string& mode, const Run& r) {
           {"trace_sha256", r.summary.data().value(records::summary_key::kTraceSha, "")}};
 }
 
-std::vector<records::ResultColumn> loop_columns() {
-  return {{"mode", "mode", -1},
-          column::kEnergyKJ,
-          column::kMileage,
-          column::kDistance,
-          {"active_mean", "active (mean, L+R)", 2},
-          column::kCrossTrackMax,
-          {"cross_track_rms_m", "cross-track rms m", 3},
-          {"heading_error_max_rad", "heading error max rad", 3},
-          column::kFinalPositionError,
-          column::kStatus,
-          column::kTraceSha256};
-}
-
 /// series/loop-difference.csv: E_EC - E_NO (J) and the active agents of each mode at the trace
 /// rows both runs wrote (the two runs tick alike); false when a trace is missing.
 bool write_difference(const RunPair& p, const std::string& path) {
@@ -238,7 +225,7 @@ int exp_turns(Experiment& e) {
   std::filesystem::create_directories(e.dir() + "/series");
   const RunPair p = run_no_ec(e, s, "loop", "loop");
   records::ResultTable t;
-  t.cols = loop_columns();
+  t.cols = records::columns::turn_loops();
   t.rows = {loop_row("NO", p.no), loop_row("EC", p.ec)};
   std::ostringstream after;
   after << "EC against NO: energy " << fixed(p.ec.energy_kJ() - p.no.energy_kJ(), 3) << " kJ ("

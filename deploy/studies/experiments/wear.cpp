@@ -6,6 +6,7 @@
 #include "deploy/studies/experiments/experiment_list.hpp"
 #include "records/ledger_file.hpp"
 #include "records/run_files.hpp"
+#include "records/study_columns.hpp"
 
 namespace maptr::deploy {
 
@@ -23,24 +24,6 @@ Conditions conditions(bool q) {
 
 /// After the speed first comes within the band: the first Level-2 decision is in, s.
 constexpr double kCruiseAfterReachS = 2.0;
-
-std::vector<records::ResultColumn> columns() {
-  return {{"agents", "N", 0},
-          column::kActiveMean,
-          column::kActiveEnd,
-          {"idle_mean_steps", "idle per agent (T_ON steps)", 2},
-          {"idle_min_steps", "idle min", 2},
-          {"idle_max_steps", "idle max", 2},
-          {"idle_mean_s", "idle per agent s", 1},
-          {"wear_min_m", "wear min m", 1},
-          {"wear_max_m", "wear max m", 1},
-          {"wear_spread_L_m", "spread L m", 1},
-          {"wear_spread_R_m", "spread R m", 1},
-          {"spread_bound_m", "bound m", 1},
-          {"drove_in_cruise_L", "agents that drove in cruise L", 0},
-          {"drove_in_cruise_R", "R", 0},
-          column::kStatus};
-}
 
 /// Idle time per agent: run time minus the plant's driving time of the agent.
 void add_idle(json& row, const Run& r, double t_on) {
@@ -172,7 +155,7 @@ int exp_wear(Experiment& e) {
   const Conditions c = conditions(e.quick());
   e.set_total(static_cast<int>(c.ns.size()));
   records::ResultTable t;
-  t.cols = columns();
+  t.cols = records::columns::wear();
   for (int n : c.ns) {
     config::Scenario s = e.base();
     s.robot.agents = n;
