@@ -116,6 +116,10 @@ void check_faults(const Scenario& s, const Context& file) {
       fc.fail("target", f.target, "a host fault needs a fleet on several hosts (--hosts N)");
     if (host_target && s.hosts.enabled() && host >= s.hosts.count)
       fc.fail("target", f.target, "no such host (" + std::to_string(s.hosts.count) + " hosts: h0..)");
+    if (s.hosts.ssh && (f.action == "pause" || f.action == "resume"))
+      fc.fail("action", f.action,
+              "cannot run with hosts.ssh (--ssh): a process started over ssh runs on its machine, and "
+              "SIGSTOP would stop its ssh client, not it");
     if (f.at_s > s.duration_s)
       fc.fail("at_s", model::param_value(f.at_s),
               "after the end of the run (duration_s = " + model::param_value(s.duration_s) + " s)");

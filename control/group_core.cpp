@@ -152,7 +152,6 @@ GroupDecision GroupCore::step(const GroupInput& measured_in) {
       ++ledger_.reallocations;
     }
   }
-  const bool changed = next != ledger_.assignment;
   ledger_.assignment = next;
   d.active = next;
   d.n_active = count(next);
@@ -162,8 +161,6 @@ GroupDecision GroupCore::step(const GroupInput& measured_in) {
   d.faulty = diagnosis_ ? diagnosis_->flags() : std::vector<uint8_t>(static_cast<std::size_t>(n), 0);
   last_ = d;
   d.diagnosed = std::move(diagnosed);
-  const long long period_ticks = std::max(1LL, std::llround(c_.level2_period_s / c_.dt_s));
-  d.ledger_due = changed || in.tick % period_ticks == 0;
   return d;
 }
 

@@ -14,14 +14,15 @@
 // Fault detection (control/diagnosis.hpp), when the tick carries the drive's measurements: an
 // agent flagged faulty counts as not live (Level 2 counts one fewer, Level 3 never assigns it)
 // until its probation is over; GroupDecision::faulty announces it (the plant disconnects it).
-// The ledger is due to be kept (GroupDecision::ledger_due) on every change of the assignment and
-// once per Level-2 period; a restarted controller is constructed with the one kept.
+// The ledger after each step goes out with the group's status; the plant keeps the last one and
+// a restarted controller resumes from it (resume()).
 // Pure: explicit time (GroupInput::t), no DDS, no file, no clock (except the solver's diagnostic
 // timing).
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "control/diagnosis.hpp"
@@ -115,9 +116,6 @@ struct GroupDecision {
   uint64_t decisions = 0, reallocations = 0;
   std::vector<uint8_t> faulty;              ///< per agent: 0, or the Diagnosis it is isolated for
   std::vector<DiagnosisChange> diagnosed;   ///< flags raised or lowered at this tick
-  /// The ledger is due to be kept (the node saves it): the assignment changed, or a Level-2
-  /// period ended.
-  bool ledger_due = false;
 };
 
 class GroupCore {
@@ -129,6 +127,12 @@ class GroupCore {
             Level2Runner* runner = nullptr);
   GroupDecision step(const GroupInput& in);
   const Ledger& ledger() const { return ledger_; }
+  /// A restarted controller goes on from `ledger` (the side's last status the plant took; its
+  /// size must be the side's agents), before its first step.
+  void resume(Ledger ledger) {
+    ledger_ = std::move(ledger);
+    resumed_ = true;
+  }
   bool resumed() const { return resumed_; }
 
  private:

@@ -9,7 +9,6 @@
 #include "config/core_configs.hpp"
 #include "config/scenario.hpp"
 #include "group/group_wire.hpp"
-#include "records/ledger_file.hpp"
 #include "records/level2_log.hpp"
 
 namespace maptr::group {
@@ -24,10 +23,38 @@ GroupNode::GroupNode(const comm::ProcessArgs& args, int side, std::shared_ptr<sp
     : args_(args),
       side_(side),
       log_(std::move(log)),
-      ledger_path_(records::ledger_path(args.run_dir, side)),
       worker_(args.scenario.control.oracle, level2_pause),
-      core_(side, config::group_config(args.scenario),
-            records::load_ledger(ledger_path_, args.scenario.robot.per_side()), &worker_) {}
+      core_(side, config::group_config(args.scenario), std::nullopt, &worker_) {}
+
+void GroupNode::resume_from(const msg::PlantTick& t) {
+  if (const auto ledger = kept_ledger(t, side_, args_.dds.participant_id)) {
+    core_.resume(*ledger);
+    log_->info("resumed the wear ledger the plant kept: {} decisions, {} reallocations so far",
+               core_.ledger().decisions, core_.ledger().reallocations);
+  } else if (t.tick() > 0) {
+    log_->error("started at tick {} without a kept wear ledger: the side's wear starts from zero", t.tick());
+  }
+}
+
+void GroupNode::report(const control::GroupInput& in, const control::GroupDecision& d) {
+  if (d.level2_ran && (d.level2.status == control::kL2Infeasible) != infeasible_) {
+    infeasible_ = !infeasible_;
+    if (infeasible_)
+      log_->warn(
+          "Level 2 infeasible at t={:.2f} s: {} live agents cannot hold the reference; all of them run", in.t,
+          d.n_live);
+    else
+      log_->info("Level 2 feasible again at t={:.2f} s", in.t);
+  }
+  for (const auto& ch : d.diagnosed) {
+    const std::string name = config::agent_name(side_, ch.index);
+    if (ch.flag == control::Diagnosis::kNone)
+      log_->info("{} let back after its probation at t={:.2f} s", name, in.t);
+    else
+      log_->warn("{} isolated at t={:.2f} s: it looks {} (its measurements disagree with the motor model)",
+                 name, in.t, control::diagnosis_name(ch.flag));
+  }
+}
 
 int GroupNode::run() {
   comm::TickFollower follower(args_, msg::NODE_GROUP, log_);
@@ -35,9 +62,6 @@ int GroupNode::run() {
   if (level2_pause.count() > 0)
     log_->info("every Level-2 solve is followed by a {} ms pause (a slow solver, set_level2_pause)",
                level2_pause.count());
-  if (core_.resumed())
-    log_->info("resumed the wear ledger: {} decisions, {} reallocations so far", core_.ledger().decisions,
-               core_.ledger().reallocations);
   // Every Level-2 decision, for the solve-time and oracle figures (appended: a restarted
   // controller continues the file).
   std::optional<records::Level2LogWriter> l2;
@@ -46,38 +70,22 @@ int GroupNode::run() {
   } catch (const records::RecordError& e) {
     log_->warn("{}: the group runs on without its Level-2 log", e.what());
   }
-  bool infeasible = false;
+  bool first = true;
   const int code = follower.run([&](const msg::PlantTick& t) {
+    if (first) resume_from(t);  // a restarted group's first tick carries the ledger it goes on from
+    first = false;
     const control::GroupInput in = group_input(t, side_);
     const control::GroupDecision d = core_.step(in);
-    if (d.ledger_due) records::save_ledger(ledger_path_, core_.ledger());
-    if (d.level2_ran && (d.level2.status == control::kL2Infeasible) != infeasible) {
-      infeasible = !infeasible;
-      if (infeasible)
-        log_->warn(
-            "Level 2 infeasible at t={:.2f} s: {} live agents cannot hold the reference; all of them run",
-            in.t, d.n_live);
-      else
-        log_->info("Level 2 feasible again at t={:.2f} s", in.t);
-    }
+    report(in, d);
     if (d.level2_ran && l2) l2->write(d.level2);
     msg::GroupStatus st = group_status(t, side_, in, d, core_.ledger());
-    for (const auto& ch : d.diagnosed) {
-      const std::string name = config::agent_name(side_, ch.index);
-      if (ch.flag == control::Diagnosis::kNone)
-        log_->info("{} let back after its probation at t={:.2f} s", name, in.t);
-      else
-        log_->warn("{} isolated at t={:.2f} s: it looks {} (its measurements disagree with the motor model)", name,
-                   in.t, control::diagnosis_name(ch.flag));
-    }
     st.rejected(follower.rejected());
     follower.answer(st);
   });
-  records::save_ledger(ledger_path_, core_.ledger());
   log_->info(
       "Level 2: {} decisions solved on the worker thread, {} of them waited for at the tick they were due",
       worker_.finished(), worker_.waited());
-  log_->info("ledger saved: {} decisions, {} reallocations", core_.ledger().decisions,
+  log_->info("wear ledger at the end: {} decisions, {} reallocations", core_.ledger().decisions,
              core_.ledger().reallocations);
   return code;
 }

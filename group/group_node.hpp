@@ -8,6 +8,7 @@
 #include "comm/dds/process.hpp"
 #include "control/group_core.hpp"
 #include "group/level2_worker.hpp"
+#include "idl/maptr.h"
 
 namespace maptr::group {
 
@@ -25,9 +26,14 @@ class GroupNode {
   const comm::ProcessArgs& args_;
   int side_;
   std::shared_ptr<spdlog::logger> log_;
-  const std::string ledger_path_;  ///< the wear ledger kept for a restart (records/ledger_file.hpp)
   Level2Worker worker_;
   control::GroupCore core_;
+  bool infeasible_ = false;  ///< Level 2's last decision was infeasible (logged once per change)
+
+  /// Goes on from the ledger the plant kept when tick `t` (the first this start sees) carries one.
+  void resume_from(const msg::PlantTick& t);
+  /// Logs what changed at this step: Level 2's feasibility, agents isolated or let back.
+  void report(const control::GroupInput& in, const control::GroupDecision& d);
 };
 
 }  // namespace maptr::group

@@ -1,6 +1,7 @@
 #include "group/group_wire.hpp"
 
 #include "comm/lockstep/side.hpp"
+#include "comm/lockstep/wear_ledger.hpp"
 
 namespace maptr::group {
 
@@ -52,7 +53,6 @@ msg::GroupStatus group_status(const msg::PlantTick& t, int side, const control::
   st.side(comm::to_msg_side(side));
   st.active(d.active);
   st.live(in.live);
-  st.wear_m(ledger.wear_m);
   st.n_active(static_cast<uint16_t>(d.n_active));
   st.n_live(static_cast<uint16_t>(d.n_live));
   st.n_other(static_cast<uint16_t>(in.n_other));
@@ -60,10 +60,19 @@ msg::GroupStatus group_status(const msg::PlantTick& t, int side, const control::
   st.level2_relaxed(d.level2.relaxed);
   st.oracle_n_active(static_cast<int16_t>(d.level2.oracle_n_active));
   st.solve_time_ms(d.level2.solve_ms);
-  st.decisions(d.decisions);
-  st.reallocations(d.reallocations);
+  st.ledger(comm::to_msg(ledger));
   st.faulty(d.faulty);
   return st;
+}
+
+std::optional<control::Ledger> kept_ledger(const msg::PlantTick& t, int side, long participant) {
+  for (const msg::KeptLedger& k : t.ledgers()) {
+    if (k.side() != comm::to_msg_side(side) ||
+        (k.for_participant() != participant && k.for_participant() >= 0))
+      continue;
+    return comm::ledger_of(k.ledger(), k.assignment());
+  }
+  return std::nullopt;
 }
 
 control::Level2Decision level2_of(const msg::GroupStatus& st) {

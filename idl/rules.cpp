@@ -43,6 +43,16 @@ bool side_tick(const SideTick& s, std::size_t per_side) {
          s.battery_V() >= 0 && s.V_active() >= -kVoltageMargin * s.battery_V() && s.n_active() <= per_side && s.relay_count() <= per_side &&
          s.group_stamp() >= -1 && measurements(s, per_side);
 }
+/// A ledger of `n` agents: distances and active times finite and not negative, times finite, a
+/// Level-2 choice of at most n.
+bool ledger(const WearLedger& l, std::size_t n) {
+  if (l.wear_m().size() != n || l.active_time_s().size() != n || l.n_target() > n) return false;
+  for (const auto* v : {&l.wear_m(), &l.active_time_s()})
+    for (double x : *v)
+      if (!std::isfinite(x) || x < 0.0) return false;
+  return finite_all({l.last_t(), l.last_alloc_t()});
+}
+
 }  // namespace
 
 bool well_formed(const PlantTick& t, const FleetBounds& b) {
@@ -51,6 +61,9 @@ bool well_formed(const PlantTick& t, const FleetBounds& b) {
   if (t.run_state() > RUN_ABORTED || t.central_stamp() < -1) return false;
   for (const SideTick& s : t.sides())
     if (!side_tick(s, b.per_side)) return false;
+  for (const KeptLedger& k : t.ledgers())
+    if (k.side() > SIDE_R || !mask(k.assignment(), b.per_side) || !ledger(k.ledger(), b.per_side))
+      return false;
   return t.paused().empty() || mask(t.paused(), 2 * b.per_side + 3);
 }
 
@@ -62,12 +75,10 @@ bool well_formed(const AgentReply& r, const FleetBounds& b) {
 
 bool well_formed(const GroupStatus& g, const FleetBounds& b) {
   const std::size_t n = b.per_side;
-  if (g.side() > SIDE_R || !mask(g.active(), n) || !mask(g.live(), n) || g.wear_m().size() != n) return false;
+  if (g.side() > SIDE_R || !mask(g.active(), n) || !mask(g.live(), n) || !ledger(g.ledger(), n)) return false;
   if (!g.faulty().empty() && g.faulty().size() != n) return false;
   for (uint8_t f : g.faulty())
     if (f > DIAG_LIAR) return false;
-  for (double w : g.wear_m())
-    if (!std::isfinite(w) || w < 0.0) return false;
   if (g.n_active() > n || g.n_live() > n || g.n_other() > n || g.level2_status() > L2_SOLVER_FAILED)
     return false;
   const double relaxed = g.level2_relaxed();

@@ -121,7 +121,8 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
     log_diagnoses(s, g.faulty());
     core_.on_group_flags(s, g.faulty(), diagnosis_names(), control::kDiagnosisCount);
     const int before = wear_.regressions(s);
-    wear_.on_status(s, g.wear_m(), core_.t());
+    wear_.on_status(s, g.ledger().wear_m(), core_.t());
+    ledgers_.on_status(s, g);
     if (wear_.regressions(s) > before)
       log_.error("group-{}'s wear ledger went backwards at t={:.2f} s", s == 0 ? "L" : "R", core_.t());
   }
@@ -270,6 +271,11 @@ int PlantLoop::report(bool stopped) {
   in.tick_timing_us = timing_.json();
   in.group_wear = wear_.json();
   records::write_plant_results(run_dir_, plant_results(core_, in, membership_.records()));
+  try {
+    ledgers_.save(run_dir_);
+  } catch (const std::exception& e) {
+    log_.error("{}", e.what());
+  }
   log_.info("run {} after {} ticks ({:.1f} s simulated, {:.2f} s wall)", in.status, core_.tick(), core_.t(),
             wall);
   // Give the last Tick time to reach every reader before the participant goes away.

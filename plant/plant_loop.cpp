@@ -206,6 +206,7 @@ void PlantLoop::publish(msg::RunState run_state) {
   }
   published_tick_ = core_.tick();
   t.paused(membership_.paused_mask());
+  ledgers_.fill(t);
   t.run_state(run_state);
   set_wake();
   write_tick();
@@ -304,7 +305,11 @@ void PlantLoop::apply_launcher_events() {
     // A malformed event, or one whose fields do not describe the process it names, is not
     // applied and does not move the launcher's sequence (a later gate waits for the real one).
     const bool ok = valid(e, lim);
-    if (!ok || !membership_.on_launcher(e.seq(), launcher_event(e.kind()), name, e.participant_id())) {
+    const bool applied =
+        ok && membership_.on_launcher(e.seq(), launcher_event(e.kind()), name, e.participant_id());
+    if (applied && e.kind() == msg::MEMBER_STARTED && e.node_kind() == msg::NODE_GROUP)
+      ledgers_.on_started(e.side(), e.participant_id());
+    if (!applied) {
       if (reject(ok ? "stale" : "malformed") <= kRejectsLogged)
         log_.warn(
             "rejected a {} membership event from the launcher's id: seq {} (last applied {}), name '{}', "

@@ -18,6 +18,7 @@
 #include "idl/maptrPubSubTypes.h"
 #include "plant/barrier.hpp"
 #include "plant/fault_gate.hpp"
+#include "plant/ledger_keeper.hpp"
 #include "plant/membership.hpp"
 #include "plant/plant_config.hpp"
 #include "plant/run_outcome.hpp"
@@ -186,6 +187,7 @@ class PlantLoop {
   std::vector<uint64_t> agent_rejects_[2];
   uint64_t group_rejects_[2] = {0, 0}, central_rejects_ = 0;
   WearWatch wear_;  ///< the groups' ledgers, never to go backwards
+  LedgerKeeper ledgers_;  ///< the groups' last ledgers, for a restart and ledger-<side>.json
 };
 
 }  // namespace maptr::plant

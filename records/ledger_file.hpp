@@ -1,7 +1,8 @@
 #pragma once
 // A group controller's wear ledger on disk (control/level3/ledger.hpp): RUN_DIR/ledger-L.json and
-// ledger-R.json, JSON, written atomically (a temporary file, then a rename), so that a restarted
-// group resumes where it stopped and the studies read each agent's wear.
+// ledger-R.json, JSON, written atomically (a temporary file, then a rename) by the plant at the
+// end of a run from the groups' last statuses, for the studies and the soak to read each agent's
+// wear.
 #include <optional>
 #include <string>
 

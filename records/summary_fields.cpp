@@ -221,6 +221,10 @@ std::vector<SummaryField> host_keys() {
            "The command that starts a process there: ssh (hosts.ssh, or a machine's ssh command), ip "
            "(ip netns exec) or \"\" (this machine)"},
           {"hosts[].discovery_server", "text", "", "The host's discovery server, address:port"},
+          {"hosts[].run_folder", "text", "",
+           "Where the host's processes wrote: the launcher's (this machine, or a shared disk), or its own, "
+           "shipped the scenario and collected at the end into hosts/<name>/ and the run folder (\"its own: "
+           "collected N files\", or \"not collected\" and why, e.g. a lost host)"},
           {"hosts[].bytes_sent", "integer|null", "B",
            "Bytes the host sent on its link during the run; null for a real machine"},
           {"hosts[].bytes_received", "integer|null", "B",

@@ -66,7 +66,9 @@ std::vector<config::FaultSpec> chaos_schedule(unsigned seed, const config::Scena
     const double again = std::min(s.duration_s, std::round((at + back(rng)) * 100.0) / 100.0);
     // The discovery server is only killed: while it is paused no restarted process can be
     // found, and a fault gate would wait for one in vain.
-    const bool pause = kind(kind_rng) < o.pause_share && target != fleet::kDiscoveryTarget;
+    // Over ssh a pause cannot be done (Scenario::validate refuses it): kills only.
+    const double pause_share = s.hosts.ssh ? 0.0 : o.pause_share;
+    const bool pause = kind(kind_rng) < pause_share && target != fleet::kDiscoveryTarget;
     // One outage per target at a time.
     if (overlaps(done, target, at, again)) continue;
     done.push_back({target, at, again});

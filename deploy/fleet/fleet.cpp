@@ -343,6 +343,7 @@ void Fleet::end() {
               cfg_.participant_delete_s);
   for (auto& ds : ds_) ds->stop(cfg_.discovery_term_s);  // the discovery servers go last
   if (on_hosts()) {
+    hosts_->collect();  // every process has ended: the hosts' logs and files come home
     std::vector<std::string> servers;
     for (const auto& ds : ds_) servers.push_back(ds->address());
     rec_.hosts = hosts_->record(kids_, servers);

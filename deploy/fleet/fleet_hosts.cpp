@@ -1,13 +1,15 @@
 // A fleet on several hosts: the fleet's side of host placement (host_placement.hpp): the hosts'
 // discovery servers, and what host faults (kill-host, partition, heal) do to the processes.
 #include <csignal>
+#include <fstream>
+#include <iterator>
 
 #include "deploy/fleet/fleet.hpp"
 
 namespace maptr::deploy::fleet {
 
 void Fleet::setup_hosts() {
-  hosts_ = std::make_unique<HostPlacement>(sc_.hosts, o_.domain, log_);
+  hosts_ = std::make_unique<HostPlacement>(sc_.hosts, o_.domain, o_.run_dir, log_);
   // Every host must run the binaries at this machine's paths; nothing starts when one cannot.
   std::vector<std::string> binaries;
   for (const char* b : {"maptr_discovery", "maptr_plant", "maptr_central", "maptr_group", "maptr_agent"})
@@ -18,6 +20,9 @@ void Fleet::setup_hosts() {
                                   "): " + problem +
                                   "; every machine needs the binaries at this machine's paths (README \"Real "
                                   "machines\")");
+  // A host with a disk of its own gets the resolved scenario in its own run folder.
+  std::ifstream resolved(cfg_path_);
+  hosts_->ship(std::string((std::istreambuf_iterator<char>(resolved)), std::istreambuf_iterator<char>()));
   dds_.interface_address = hosts_->launcher_address();
   // One discovery server per host; each server knows the others, each client its host's own.
   const std::string servers = hosts_->discovery_servers();

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <fstream>
+
 #include "comm/posix/environment.hpp"
 #include "deploy/fleet/discovery.hpp"
 
@@ -23,15 +25,16 @@ nlohmann::json failovers_json(const std::vector<Failover>& fs) {
   return out;
 }
 
-HostPlacement::HostPlacement(const config::HostsConfig& hc, int domain, spdlog::logger& log)
-    : hc_(hc), domain_(domain), log_(log) {
+HostPlacement::HostPlacement(const config::HostsConfig& hc, int domain, const std::string& run_dir,
+                             spdlog::logger& log)
+    : hc_(hc), domain_(domain), log_(log), run_dir_(run_dir) {
   if (hc.machines.empty()) {
     if (const int stale = sweep_stale_networks(); stale > 0)
       log_.info("removed {} network namespaces left by earlier runs", stale);
     net_ = std::make_unique<NamespaceNet>(hc.count, static_cast<int>(getpid()));
     hosts_ = net_->hosts();
     if (hc.ssh) {
-      ssh_ = std::make_unique<SshServers>(hosts_, static_cast<int>(getpid()));
+      ssh_ = std::make_unique<SshServers>(hosts_, static_cast<int>(getpid()), run_dir);
       log_.info("{} ssh servers listening; every process starts over ssh", hosts_.size());
     }
     launcher_address_ = net_->bridge_address();
@@ -149,14 +152,17 @@ nlohmann::json HostPlacement::record(const std::vector<Child>& kids,
     nlohmann::json procs = nlohmann::json::array();
     for (const auto& c : kids)
       if (c.host == i) procs.push_back(c.name);
-    nlohmann::json h = {{"name", host(i).name},
-                        {"address", host(i).address},
-                        {"kind", net_ ? "namespace" : "machine"},
-                        {"started_by", host(i).prefix.empty() ? "" : host(i).prefix.front()},
-                        {"processes", procs},
-                        {"discovery_server", servers.at(static_cast<std::size_t>(i))},
-                        {"bytes_sent", nullptr},
-                        {"bytes_received", nullptr}};
+    nlohmann::json h = {
+        {"name", host(i).name},
+        {"address", host(i).address},
+        {"kind", net_ ? "namespace" : "machine"},
+        {"started_by", host(i).prefix.empty() ? "" : host(i).prefix.front()},
+        {"processes", procs},
+        {"discovery_server", servers.at(static_cast<std::size_t>(i))},
+        {"run_folder", files_.size() > static_cast<std::size_t>(i) ? files_[static_cast<std::size_t>(i)]
+                                                                   : "the launcher's"},
+        {"bytes_sent", nullptr},
+        {"bytes_received", nullptr}};
     if (net_) {
       const LinkBytes b = net_->bytes(i);
       h["bytes_sent"] = b.sent;
@@ -165,6 +171,32 @@ nlohmann::json HostPlacement::record(const std::vector<Child>& kids,
     out.push_back(h);
   }
   return out;
+}
+
+void HostPlacement::ship(const std::string& scenario_text) {
+  std::ofstream(run_dir_ + "/" + kLauncherMarker) << getpid() << "\n";
+  disks_.assign(hosts_.size(), HostDisk::kSame);
+  files_.assign(hosts_.size(), "the launcher's");
+  for (std::size_t i = 0; i < hosts_.size(); ++i) {
+    const std::string problem =
+        ship_run_files(hosts_[i].prefix, run_dir_, {{"scenario.yaml", scenario_text}}, disks_[i]);
+    if (!problem.empty())
+      throw config::ScenarioError("host " + hosts_[i].name + " (" + hosts_[i].address + "): " + problem);
+    if (disks_[i] == HostDisk::kShared) files_[i] = "the launcher's, through a shared disk";
+    if (disks_[i] == HostDisk::kOwn) {
+      files_[i] = "its own, not collected";
+      log_.info("{}: a run folder of its own; the scenario shipped to it", hosts_[i].name);
+    }
+  }
+}
+
+void HostPlacement::collect() {
+  for (std::size_t i = 0; i < disks_.size(); ++i) {
+    if (disks_[i] != HostDisk::kOwn) continue;
+    files_[i] =
+        "its own: " + collect_run_files(hosts_[i].prefix, run_dir_, hosts_[i].name, {"scenario.yaml"});
+    log_.info("{}'s run folder, {}", hosts_[i].name, files_[i]);
+  }
 }
 
 }  // namespace maptr::deploy::fleet

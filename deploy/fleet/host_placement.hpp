@@ -13,6 +13,7 @@
 
 #include "config/scenario.hpp"
 #include "deploy/fleet/children.hpp"
+#include "deploy/fleet/host_files.hpp"
 #include "deploy/fleet/hosts.hpp"
 #include "deploy/fleet/ssh_servers.hpp"
 
@@ -37,7 +38,7 @@ class HostPlacement {
   /// The hosts of `hc`: namespace hosts made now (after removing those of runs that no longer
   /// live), or the machines it names. `domain` gives the discovery servers' port. Throws
   /// std::runtime_error when the namespaces cannot be made.
-  HostPlacement(const config::HostsConfig& hc, int domain, spdlog::logger& log);
+  HostPlacement(const config::HostsConfig& hc, int domain, const std::string& run_dir, spdlog::logger& log);
   ~HostPlacement();  ///< removes the namespaces, veths and bridge
   HostPlacement(const HostPlacement&) = delete;
   HostPlacement& operator=(const HostPlacement&) = delete;
@@ -73,6 +74,15 @@ class HostPlacement {
   /// starts again).
   bool heal(int h);
 
+  /// Writes the resolved scenario (`scenario_text`, RUN/scenario.yaml) into the run folder of
+  /// every host reached over a command prefix that does not share the launcher's disk (after the
+  /// launcher's marker file: host_files.hpp). Throws config::ScenarioError naming a host whose
+  /// run folder cannot be written.
+  void ship(const std::string& scenario_text);
+  /// Copies back and merges the run folder of each host with a disk of its own, at the end
+  /// (a lost or cut-off host: whatever can still be reached); each host's line is in record().
+  void collect();
+
   /// The hosts' part of the summary: name, address, kind, processes, discovery server and the
   /// bytes on each namespace host's link (`servers`: each host's server locator).
   nlohmann::json record(const std::vector<Child>& kids, const std::vector<std::string>& servers) const;
@@ -85,6 +95,9 @@ class HostPlacement {
   std::unique_ptr<SshServers> ssh_;  ///< hosts.ssh: a server per namespace host (ended before net_ goes)
   std::vector<Host> hosts_;
   std::string launcher_address_;
+  std::string run_dir_;
+  std::vector<HostDisk> disks_;     ///< per host, from ship()
+  std::vector<std::string> files_;  ///< per host: what collect() did with its run folder
 };
 
 }  // namespace maptr::deploy::fleet

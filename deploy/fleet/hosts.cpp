@@ -93,13 +93,13 @@ std::string hosts_root_problem() {
          "(run as root, or without --hosts)";
 }
 
-int run_tool(const std::vector<std::string>& argv, std::string* output) {
+int run_tool(const std::vector<std::string>& argv, std::string* output, bool with_stderr) {
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) return -1;
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
-  posix_spawn_file_actions_adddup2(&fa, fds[1], 2);
+  if (with_stderr) posix_spawn_file_actions_adddup2(&fa, fds[1], 2);
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
@@ -129,7 +129,8 @@ bool is_ssh_prefix(const std::vector<std::string>& prefix) {
 }
 
 std::vector<std::string> host_argv(const std::vector<std::string>& prefix, const Environment& env,
-                                   const std::string& binary, const std::vector<std::string>& args) {
+                                   const std::string& binary, const std::vector<std::string>& args,
+                                   bool terminal) {
   std::vector<std::string> command = {"env"};
   for (const auto& [k, v] : env) command.push_back(k + "=" + v);
   command.push_back(binary);
@@ -142,7 +143,7 @@ std::vector<std::string> host_argv(const std::vector<std::string>& prefix, const
     // terminal there, so that when the launcher ends the client the process gets SIGHUP.
     const auto has = [&](const char* o) { return std::find(out.begin(), out.end(), o) != out.end(); };
     if (!has("-n")) out.insert(out.begin() + 1, "-n");
-    if (!has("-tt")) out.insert(out.begin() + 1, "-tt");
+    if (terminal && !has("-tt")) out.insert(out.begin() + 1, "-tt");
   }
   out.insert(out.end(), command.begin(), command.end());
   return out;

@@ -39,9 +39,12 @@ struct LinkBytes {
 };
 
 /// The command line of a process on a host: prefix, `env`, the environment as K=V, then the
-/// binary and its arguments.
+/// binary and its arguments. Over ssh with `terminal` (a process of the fleet), the remote end
+/// gets a terminal, so that it ends when its ssh client does; without (a tool whose output is
+/// data, e.g. a tar stream), its stdout arrives byte for byte.
 std::vector<std::string> host_argv(const std::vector<std::string>& prefix, const Environment& env,
-                                   const std::string& binary, const std::vector<std::string>& args);
+                                   const std::string& binary, const std::vector<std::string>& args,
+                                   bool terminal = true);
 
 /// `word` in single quotes for a POSIX shell (a ' inside as '\'').
 std::string shell_quote(const std::string& word);
@@ -96,8 +99,8 @@ class NamespaceNet {
 /// returns how many namespaces went.
 int sweep_stale_networks();
 
-/// Runs a command (argv[0] looked up in PATH), stdout and stderr into *output if given;
-/// returns its exit status (-1 if it could not run).
-int run_tool(const std::vector<std::string>& argv, std::string* output = nullptr);
+/// Runs a command (argv[0] looked up in PATH), stdout (and, with `with_stderr`, stderr) into
+/// *output if given; returns its exit status (-1 if it could not run).
+int run_tool(const std::vector<std::string>& argv, std::string* output = nullptr, bool with_stderr = true);
 
 }  // namespace maptr::deploy::fleet

@@ -78,7 +78,7 @@ json launch_isolated(const LaunchOptions& options, const std::string& output_fil
   LaunchOptions l = options;
   l.progress = false;
   std::error_code ec;
-  fs::remove_all(l.run_dir, ec);  // a stale wear ledger would be resumed by the group controllers
+  fs::remove_all(l.run_dir, ec);  // no file of an earlier fleet may pass for this one's
   fs::create_directories(l.run_dir + "/logs");
   std::fflush(nullptr);
   const pid_t parent = getpid();

@@ -61,12 +61,14 @@ std::string ssh_rehearsal_problem() {
   return "";
 }
 
-SshServers::SshServers(std::vector<Host>& hosts, int tag) : dir_(ssh_dir(std::to_string(tag))) {
+SshServers::SshServers(std::vector<Host>& hosts, int tag, const std::string& run_dir)
+    : dir_(ssh_dir(std::to_string(tag))) {
   if (const std::string p = ssh_rehearsal_problem(); !p.empty()) throw std::runtime_error("--ssh: " + p);
   fs::remove_all(dir_);
   fs::create_directories(dir_);
   ::chmod(dir_.c_str(), 0700);
   fs::create_directories("/run/sshd");  // the server's privilege separation folder
+  fs::create_directories(run_dir);      // where each host's own disk is mounted
   for (const char* key : {"client", "host"})
     if (run_tool({"ssh-keygen", "-q", "-t", "ed25519", "-N", "", "-C", "maptr", "-f", dir_ + "/" + key}) !=
         0) {
@@ -84,29 +86,8 @@ SshServers::SshServers(std::vector<Host>& hosts, int tag) : dir_(ssh_dir(std::to
   const std::string host_key = first_two_words(dir_ + "/host.pub");
   for (auto& h : hosts) {
     known << h.address << " " << host_key << "\n";
-    // Started as every child of the launcher is (its own process group, gone with the launcher).
-    servers_.push_back(start_process({"ip", "netns", "exec", h.netns, kSshd, "-D", "-e", "-f",
-                                      dir_ + "/sshd_config", "-o", "ListenAddress=" + h.address},
-                                     this_environment(), dir_ + "/sshd-" + h.name + ".log", -1));
-    // Nothing of root's own ssh set-up (its configuration, its agent's keys) takes part.
-    h.prefix = {"ssh",
-                "-F",
-                "/dev/null",
-                "-i",
-                dir_ + "/client",
-                "-o",
-                "IdentitiesOnly=yes",
-                "-o",
-                "BatchMode=yes",
-                "-o",
-                "ConnectTimeout=10",
-                "-o",
-                "UserKnownHostsFile=" + dir_ + "/known_hosts",
-                "-o",
-                "StrictHostKeyChecking=yes",
-                "-o",
-                "LogLevel=ERROR",
-                "root@" + h.address};
+    servers_.push_back(start_server(h, run_dir));
+    h.prefix = client_prefix(h);
   }
   known.close();
   const auto deadline = std::chrono::steady_clock::now() + kListenWait;
@@ -119,6 +100,29 @@ SshServers::SshServers(std::vector<Host>& hosts, int tag) : dir_(ssh_dir(std::to
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
+}
+
+pid_t SshServers::start_server(const Host& h, const std::string& run_dir) const {
+  // Started as every child of the launcher is (its own process group, gone with the launcher),
+  // in a mount namespace of its own with a fresh tmpfs at the run folder's path: the host's
+  // disk, gone with the namespace when its server ends (or is killed with the launcher).
+  // clang-format off
+  const std::vector<std::string> argv = {
+      "ip", "netns", "exec", h.netns,
+      "unshare", "--mount", "--propagation", "private",
+      "sh", "-c", "mount -t tmpfs -o mode=0755 maptr-$1 \"$2\" && shift 2 && exec \"$@\"", "sh", h.name, run_dir,
+      kSshd, "-D", "-e", "-f", dir_ + "/sshd_config", "-o", "ListenAddress=" + h.address};
+  // clang-format on
+  return start_process(argv, this_environment(), dir_ + "/sshd-" + h.name + ".log", -1);
+}
+
+std::vector<std::string> SshServers::client_prefix(const Host& h) const {
+  // Nothing of root's own ssh set-up (its configuration, its agent's keys) takes part.
+  // clang-format off
+  return {"ssh", "-F", "/dev/null", "-i", dir_ + "/client", "-o", "IdentitiesOnly=yes", "-o", "BatchMode=yes",
+          "-o", "ConnectTimeout=10", "-o", "UserKnownHostsFile=" + dir_ + "/known_hosts",
+          "-o", "StrictHostKeyChecking=yes", "-o", "LogLevel=ERROR", "root@" + h.address};
+  // clang-format on
 }
 
 SshServers::~SshServers() { remove(); }

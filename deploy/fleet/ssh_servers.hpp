@@ -22,9 +22,11 @@ std::string ssh_rehearsal_problem();
 
 class SshServers {
  public:
-  /// Starts a server on every host and sets each host's prefix to an ssh to it. Throws
+  /// Starts a server on every host and sets each host's prefix to an ssh to it. Each server,
+  /// and whatever it starts, sees a disk of its own at `run_dir` (an empty file system mounted
+  /// there in a mount namespace of its own): no host sees the launcher's run folder. Throws
   /// std::runtime_error (after removing what it made) when a server does not listen within 10 s.
-  SshServers(std::vector<Host>& hosts, int tag);
+  SshServers(std::vector<Host>& hosts, int tag, const std::string& run_dir);
   ~SshServers();
   SshServers(const SshServers&) = delete;
   SshServers& operator=(const SshServers&) = delete;
@@ -33,6 +35,10 @@ class SshServers {
 
  private:
   void remove();
+  /// The server of host h (sshd -D on its address, in its namespace, on a disk of its own).
+  pid_t start_server(const Host& h, const std::string& run_dir) const;
+  /// The command prefix that reaches host h with the run's key, checking its host key.
+  std::vector<std::string> client_prefix(const Host& h) const;
   std::string dir_;
   std::vector<pid_t> servers_;
 };

@@ -173,10 +173,10 @@ void FleetView::on_group(const msg::GroupStatus& g) {
   v.level2 = group::level2_of(g);
   v.group_n_active = g.n_active();
   v.group_n_live = g.n_live();
-  v.decisions = g.decisions();
-  v.reallocations = g.reallocations();
-  for (std::size_t i = 0; i < v.agents.size() && i < g.wear_m().size(); ++i)
-    v.agents[i].wear_m = g.wear_m()[i];
+  v.decisions = g.ledger().decisions();
+  v.reallocations = g.ledger().reallocations();
+  for (std::size_t i = 0; i < v.agents.size() && i < g.ledger().wear_m().size(); ++i)
+    v.agents[i].wear_m = g.ledger().wear_m()[i];
   static const char* const kDiagnosis[] = {"", "open", "short", "torque", "resistance", "stuck", "sensor", "erratic", "liar"};
   for (std::size_t i = 0; i < v.agents.size() && i < g.faulty().size(); ++i) {
     const uint8_t f = g.faulty()[i] <= msg::DIAG_LIAR ? g.faulty()[i] : 0;

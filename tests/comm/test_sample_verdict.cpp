@@ -46,7 +46,8 @@ std::string status(int side, std::size_t live) {
   g.side(static_cast<msg::Side>(side));
   g.active(std::vector<uint8_t>(kAgents / 2, 1));
   g.live(std::vector<uint8_t>(live, 1));
-  g.wear_m(std::vector<double>(kAgents / 2, 2.5));
+  g.ledger().wear_m(std::vector<double>(kAgents / 2, 2.5));
+  g.ledger().active_time_s(std::vector<double>(g.ledger().wear_m().size(), 0.0));
   return bytes_of<msg::GroupStatusPubSubType>(g);
 }
 

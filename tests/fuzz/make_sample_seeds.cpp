@@ -73,7 +73,8 @@ msg::GroupStatus group_sample() {
   g.side(msg::SIDE_L);
   g.active(std::vector<std::uint8_t>(fuzz::kPerSide, 1));
   g.live(std::vector<std::uint8_t>(fuzz::kPerSide, 1));
-  g.wear_m(std::vector<double>(fuzz::kPerSide, 1.5));
+  g.ledger().wear_m(std::vector<double>(fuzz::kPerSide, 1.5));
+  g.ledger().active_time_s(std::vector<double>(g.ledger().wear_m().size(), 0.0));
   g.n_active(fuzz::kPerSide);
   g.level2_status(msg::L2_OK);
   return g;
@@ -136,6 +137,20 @@ void tick_seeds(Seeds& out) {
   out.push_back({"tick-measured", serialize<msg::PlantTickPubSubType>(k, t)});
   t.sides()[1].measured_A()[2] = std::numeric_limits<float>::quiet_NaN();
   out.push_back({"tick-measured-nan", serialize<msg::PlantTickPubSubType>(k, t)});
+  // Handing a restarted group-R its kept wear ledger, and the same with a negative distance.
+  t = tick_sample();
+  msg::KeptLedger kept;
+  kept.side(msg::SIDE_R);
+  kept.for_participant(5 + 2 * fuzz::kPerSide + 6);
+  kept.assignment(std::vector<std::uint8_t>(fuzz::kPerSide, 1));
+  kept.ledger().wear_m(std::vector<double>(fuzz::kPerSide, 2.5));
+  kept.ledger().active_time_s(std::vector<double>(fuzz::kPerSide, 0.5));
+  kept.ledger().last_t(12.0);
+  kept.ledger().last_alloc_t(10.0);
+  t.ledgers().push_back(kept);
+  out.push_back({"tick-kept-ledger", serialize<msg::PlantTickPubSubType>(k, t)});
+  t.ledgers()[0].ledger().wear_m()[1] = -1.0;
+  out.push_back({"tick-kept-ledger-negative", serialize<msg::PlantTickPubSubType>(k, t)});
 }
 
 void reply_seeds(Seeds& out) {

@@ -73,13 +73,14 @@ TEST(Faults, RestartedGroupControllerContinuesItsWearLedger) {
   const std::string out = tmp.path() + "/run";
   auto r = run_cli(run_args(out, {"--duration", "40", "--kill", "group-L@10", "--restart", "group-L@11"}), out, 300);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  // The restarted controller loaded the ledger it had saved, and went on counting.
+  // The restarted controller went on from the ledger the plant kept from its predecessor's last
+  // status (handed to it in its first tick: no file), and went on counting.
   std::ifstream log(out + "/logs/group-L.log");
   std::string line, resumed;
   while (std::getline(log, line))
-    if (line.find("resumed the wear ledger:") != std::string::npos) resumed = line;
+    if (line.find("resumed the wear ledger the plant kept:") != std::string::npos) resumed = line;
   ASSERT_FALSE(resumed.empty());
-  const auto pos = resumed.find("ledger: ") + 8;
+  const auto pos = resumed.find("kept: ") + 6;
   const int decisions_at_restart = std::stoi(resumed.substr(pos));
   EXPECT_GT(decisions_at_restart, 0);
   const auto ledger = read_json(out + "/ledger-L.json");
@@ -87,6 +88,7 @@ TEST(Faults, RestartedGroupControllerContinuesItsWearLedger) {
   double wear = 0.0;
   for (double w : ledger["wear_m"].get<std::vector<double>>()) wear += w;
   EXPECT_GT(wear, 100.0);  // more than the first 10 s could give one active set
+  EXPECT_EQ(r.summary["plant"]["group_wear"]["L"]["regressions"], 0);  // not one metre lost
   for (const auto& p : r.summary["processes"])
     if (p["name"] == "group-L") {
       EXPECT_EQ(p["starts"], 2);

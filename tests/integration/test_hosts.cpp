@@ -346,6 +346,17 @@ bool running_with(const std::string& text) {
   return false;
 }
 
+/// True when a process's mount table still holds a mount at or under `path` (a host's disk).
+bool mounted_anywhere(const std::string& path) {
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/proc", ec)) {
+    std::ifstream f(e.path() / "mountinfo");
+    for (std::string line; std::getline(f, line);)
+      if (line.find(" " + path) != std::string::npos) return true;
+  }
+  return false;
+}
+
 std::string ssh_dir_of(pid_t launcher) { return "/run/maptr-hosts/" + std::to_string(launcher) + "-ssh"; }
 
 /// True while a server of this launcher's run runs or its folder of keys is there.
@@ -374,8 +385,21 @@ TEST_F(Hosts, OverSshEveryProcessStartsBySshAndTheTraceIsTheOneHostTrace) {
     EXPECT_NE(p.value("host_pid", 0L), p.value("pid", 0L)) << p.dump();
   }
   for (const auto& h : ssh.summary["hosts"]) EXPECT_EQ(h.value("started_by", ""), "ssh") << h.dump();
+  // No host saw the launcher's run folder (each had a disk of its own and did not see the
+  // launcher's marker file); every host's logs and files came home: under hosts/<name>/, and
+  // merged into the run folder (the trace above is the plant's host's, collected).
+  const std::string out = tmp.path() + "/ssh";
+  for (const auto& h : ssh.summary["hosts"]) {
+    EXPECT_EQ(h.value("run_folder", "").rfind("its own: collected ", 0), 0u) << h.dump();
+    EXPECT_TRUE(std::filesystem::is_directory(out + "/hosts/" + h.value("name", "") + "/logs")) << h.dump();
+  }
+  for (const auto& p : ssh.summary["processes"])
+    EXPECT_TRUE(std::filesystem::exists(out + "/logs/" + p.value("name", "") + ".log")) << p.dump();
+  for (const char* f : {"trace.csv", "plant.json", "ledger-L.json", "level2-L.csv"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
   EXPECT_FALSE(ssh_server_left(pid)) << "an ssh server, key or configuration of the run is left";
   EXPECT_FALSE(network_left(pid));
+  EXPECT_FALSE(mounted_anywhere(out)) << "a host's disk is still mounted";
 }
 
 TEST_F(Hosts, OverSshTheControllersOfALostHostFailOver) {
@@ -393,7 +417,15 @@ TEST_F(Hosts, OverSshTheControllersOfALostHostFailOver) {
     EXPECT_EQ(f["from"], "h1") << f.dump();
     EXPECT_TRUE(f["running_at_s"].is_number()) << f.dump();
   }
+  // The lost host's disk could not be reached; the others' came home.
+  for (const auto& h : r.summary["hosts"])
+    EXPECT_EQ(h.value("run_folder", "")
+                  .rfind(h["name"] == "h1" ? "its own: not collected" : "its own: collected", 0),
+              0u)
+        << h.dump();
+  EXPECT_EQ(r.summary["plant"]["group_wear"]["L"]["regressions"], 0);
   EXPECT_FALSE(ssh_server_left(pid));
+  EXPECT_FALSE(mounted_anywhere(out));
 }
 
 TEST_F(Hosts, OverSshNothingIsLeftAfterTheLauncherIsKilled) {
@@ -412,6 +444,7 @@ TEST_F(Hosts, OverSshNothingIsLeftAfterTheLauncherIsKilled) {
       << "an ssh server outlived the launcher";
   EXPECT_TRUE(wait_for([&] { return !running_with(out); }, 30))
       << "a process of the run outlived the launcher";
+  EXPECT_TRUE(wait_for([&] { return !mounted_anywhere(out); }, 30)) << "a host's disk outlived the launcher";
   pid_t next = 0;
   const auto r = run_hosts(run_args(tmp.path() + "/next", {"--hosts", "2", "--duration", "1"}),
                            tmp.path() + "/next", 300, next);

@@ -319,11 +319,12 @@ class RightfulForger {
       g.side(msg::SIDE_L);
       g.active(std::vector<uint8_t>(n, 1));
       g.live(std::vector<uint8_t>(n, 1));
-      g.wear_m(std::vector<double>(n, 0.0));  // would be a ledger going backwards
+      g.ledger().wear_m(std::vector<double>(n, 0.0));  // would be a ledger going backwards
+      g.ledger().active_time_s(std::vector<double>(n, 0.0));
       return g;
     };
     auto g = status();
-    g.wear_m()[0] = kNaN;
+    g.ledger().wear_m()[0] = kNaN;
     written += group_->write(&g);
     g = status();
     g.live(std::vector<uint8_t>(n + 1, 1));

@@ -193,6 +193,18 @@ TEST(FleetChaos, PausesAndTheDiscoveryServerWhenAsked) {
     EXPECT_TRUE(f.action == "pause" || f.action == "resume" || f.target == "discovery" ||
                 maptr::config::is_agent_fault_action(f.action))
         << f.action;
+  // Over ssh (where a pause cannot be done) the same draw has kills only, and the scenario takes it.
+  {
+    maptr::config::Scenario ssh = sc;
+    ssh.faults.clear();
+    ssh.hosts.count = 3;
+    ssh.hosts.ssh = true;
+    const auto kills_only = chaos_schedule(3, ssh, o);
+    EXPECT_FALSE(kills_only.empty());
+    for (const auto& f : kills_only) EXPECT_TRUE(f.action != "pause" && f.action != "resume") << f.action;
+    ssh.faults = kills_only;
+    EXPECT_NO_THROW(ssh.validate());
+  }
   // Without pauses the targets and times are those of the plain schedule.
   o.pause_share = 0.0;
   o.discovery = false;

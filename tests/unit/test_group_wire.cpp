@@ -2,6 +2,7 @@
 // one side, and a decision answered as GroupStatus and logged as a Level-2 record.
 #include <gtest/gtest.h>
 
+#include "comm/lockstep/wear_ledger.hpp"
 #include "group/group_wire.hpp"
 
 namespace {
@@ -80,12 +81,14 @@ TEST(GroupWire, TheStatusCarriesTheDecisionAndTheLevel2Outcome) {
   d.faulty = {0, 0, 2, 0};
   maptr::control::Ledger ledger(4);
   ledger.wear_m = {1.0, 2.0, 3.0, 4.0};
+  ledger.decisions = 7;
+  ledger.reallocations = 3;
   const msg::GroupStatus st = maptr::group::group_status(t, 1, in, d, ledger);
   EXPECT_EQ(st.tick(), 42u);
   EXPECT_EQ(st.side(), msg::SIDE_R);
   EXPECT_EQ(st.active(), d.active);
   EXPECT_EQ(st.live(), in.live);
-  EXPECT_EQ(st.wear_m(), ledger.wear_m);
+  EXPECT_EQ(st.ledger().wear_m(), ledger.wear_m);
   EXPECT_EQ(st.n_active(), 2);
   EXPECT_EQ(st.n_live(), 3);
   EXPECT_EQ(st.n_other(), 3);
@@ -93,8 +96,8 @@ TEST(GroupWire, TheStatusCarriesTheDecisionAndTheLevel2Outcome) {
   EXPECT_DOUBLE_EQ(st.level2_relaxed(), 2.5);
   EXPECT_EQ(st.oracle_n_active(), -1);
   EXPECT_DOUBLE_EQ(st.solve_time_ms(), 1.25);
-  EXPECT_EQ(st.decisions(), 7u);
-  EXPECT_EQ(st.reallocations(), 3u);
+  EXPECT_EQ(st.ledger().decisions(), 7u);
+  EXPECT_EQ(st.ledger().reallocations(), 3u);
   EXPECT_EQ(st.faulty(), d.faulty);
   for (const auto& [core, wire] : {std::pair{maptr::control::kL2None, msg::L2_NONE},
                                    {maptr::control::kL2Ok, msg::L2_OK},
@@ -129,3 +132,37 @@ TEST(GroupWire, TheDecisionAStatusCarriesIsReadBackAsTheCoresRecord) {
 }
 
 }  // namespace
+
+TEST(GroupWire, ARestartedGroupFindsTheLedgerTheTickCarriesForItsOwnStartOnly) {
+  maptr::control::Ledger ledger(4);
+  ledger.wear_m = {1.5, 0.0, 2.25, 0.125};
+  ledger.active_time_s = {0.5, 0.0, 1.0, 0.0};
+  ledger.last_t = 12.34;
+  ledger.last_alloc_t = 10.0;
+  ledger.n_target = 2;
+  ledger.assignment = {1, 0, 1, 0};
+  ledger.decisions = 9;
+  ledger.reallocations = 4;
+  msg::PlantTick t = two_sided_tick();
+  EXPECT_FALSE(maptr::group::kept_ledger(t, 1, 77));  // a tick without a hand-over
+  msg::KeptLedger k;
+  k.side(msg::SIDE_R);
+  k.for_participant(77);
+  k.assignment(ledger.assignment);
+  k.ledger(maptr::comm::to_msg(ledger));
+  t.ledgers().push_back(k);
+  const auto back = maptr::group::kept_ledger(t, 1, 77);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->wear_m, ledger.wear_m);
+  EXPECT_EQ(back->active_time_s, ledger.active_time_s);
+  EXPECT_EQ(back->last_t, ledger.last_t);
+  EXPECT_EQ(back->last_alloc_t, ledger.last_alloc_t);
+  EXPECT_EQ(back->n_target, 2);
+  EXPECT_EQ(back->assignment, ledger.assignment);
+  EXPECT_EQ(back->decisions, 9u);
+  EXPECT_EQ(back->reallocations, 4u);
+  EXPECT_FALSE(maptr::group::kept_ledger(t, 1, 78));  // another start of group-R (a stale copy)
+  EXPECT_FALSE(maptr::group::kept_ledger(t, 0, 77));  // the other side
+  t.ledgers()[0].for_participant(-1);                 // the plant was not told which start
+  EXPECT_TRUE(maptr::group::kept_ledger(t, 1, 78));
+}

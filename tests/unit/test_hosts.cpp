@@ -161,6 +161,20 @@ TEST(HostsSection, BadValuesNameTheField) {
       EXPECT_NE(std::string(e.what()).find("hosts."), std::string::npos) << e.what();
     }
   }
+  // Over ssh a pause cannot be done (SIGSTOP would stop the ssh client): refused before anything
+  // starts, naming the fault and the rule; a kill is accepted.
+  try {
+    maptr::config::parse_scenario(
+        "hosts: {count: 3, ssh: true}\nfaults: [{target: L1, action: pause, at_s: 5}]\n", "test");
+    ADD_FAILURE() << "a pause over ssh accepted";
+  } catch (const maptr::config::ScenarioError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("faults[0].action"), std::string::npos) << m;
+    EXPECT_NE(m.find("pause"), std::string::npos) << m;
+    EXPECT_NE(m.find("hosts.ssh"), std::string::npos) << m;
+  }
+  EXPECT_NO_THROW(maptr::config::parse_scenario(
+      "hosts: {count: 3, ssh: true}\nfaults: [{target: L1, action: kill, at_s: 5}]\n", "test"));
   // An unknown key: the message names it and quotes its value (read from a copy of the node,
   // not from the iterator's temporary).
   try {

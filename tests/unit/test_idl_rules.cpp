@@ -90,7 +90,8 @@ TEST(IdlRules, AGroupsFaultyFlagsAreAbsentOrAKnownDiagnosisPerAgent) {
   g.side(msg::SIDE_L);
   g.active(std::vector<uint8_t>(4, 1));
   g.live(std::vector<uint8_t>(4, 1));
-  g.wear_m(std::vector<double>(4, 0.0));
+  g.ledger().wear_m(std::vector<double>(4, 0.0));
+  g.ledger().active_time_s(std::vector<double>(g.ledger().wear_m().size(), 0.0));
   EXPECT_TRUE(msg::well_formed(g, bounds()));
   g.faulty(std::vector<uint8_t>{0, msg::DIAG_LIAR, 0, msg::DIAG_OPEN});
   EXPECT_TRUE(msg::well_formed(g, bounds()));

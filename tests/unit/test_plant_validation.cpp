@@ -46,7 +46,8 @@ msg::GroupStatus status() {
   g.side(msg::SIDE_L);
   g.active(std::vector<uint8_t>{1, 0, 1, 0});
   g.live(std::vector<uint8_t>{1, 1, 1, 0});
-  g.wear_m(std::vector<double>{12.5, 0.0, 11.0, 3.0});
+  g.ledger().wear_m(std::vector<double>{12.5, 0.0, 11.0, 3.0});
+  g.ledger().active_time_s(std::vector<double>(g.ledger().wear_m().size(), 0.0));
   g.n_active(2);
   g.n_live(3);
   g.n_other(4);
@@ -159,9 +160,11 @@ TEST(PlantValidation, GroupStatusLiveMaskAndLedgerHaveOneEntryPerAgent) {
   g.live(std::vector<uint8_t>{1, 1, 1, 1, 1});
   EXPECT_FALSE(valid(g, limits()));
   g = status();
-  g.wear_m(std::vector<double>{1.0, 2.0, 3.0});
+  g.ledger().wear_m(std::vector<double>{1.0, 2.0, 3.0});
+  g.ledger().active_time_s(std::vector<double>(g.ledger().wear_m().size(), 0.0));
   EXPECT_FALSE(valid(g, limits()));
-  g.wear_m({});
+  g.ledger().wear_m({});
+  g.ledger().active_time_s(std::vector<double>(g.ledger().wear_m().size(), 0.0));
   EXPECT_FALSE(valid(g, limits()));
   // A mask entry is 0 or 1.
   g = status();
@@ -175,7 +178,7 @@ TEST(PlantValidation, GroupStatusLiveMaskAndLedgerHaveOneEntryPerAgent) {
 TEST(PlantValidation, GroupStatusWearIsAFiniteDistance) {
   for (double bad : {kNaN, kInf, -kInf, -0.001}) {
     auto g = status();
-    g.wear_m()[2] = bad;
+    g.ledger().wear_m()[2] = bad;
     EXPECT_FALSE(valid(g, limits())) << bad;
   }
 }
@@ -286,7 +289,7 @@ TEST(PlantValidation, OneAnswerPerSenderAndTick) {
   EXPECT_EQ(once.see(g, 7), plant::Once::kCopy);
   // A different answer for the same tick: a conflict, every time, and the first stays.
   auto other = status();
-  other.wear_m()[0] = 1.0;  // a ledger going backwards
+  other.ledger().wear_m()[0] = 1.0;  // a ledger going backwards
   EXPECT_EQ(once.see(other, 7), plant::Once::kConflict);
   EXPECT_EQ(once.see(other, 7), plant::Once::kConflict);
   EXPECT_EQ(once.see(status(), 7), plant::Once::kCopy);

@@ -142,11 +142,12 @@ TEST(TopView, GroupStatusSpeedAndFinalStatus) {
   g.level2_status(msg::L2_INFEASIBLE);
   g.level2_relaxed(1.4);
   g.solve_time_ms(4.5);
-  g.reallocations(3);
-  g.wear_m({12.0, 7.0});
+  g.ledger().reallocations(3);
+  g.ledger().wear_m({12.0, 7.0});
+  g.ledger().active_time_s(std::vector<double>(g.ledger().wear_m().size(), 0.0));
   v.on_group(g);
   g.tick(101);
-  g.reallocations(4);
+  g.ledger().reallocations(4);
   v.on_group(g);
   EXPECT_EQ(v.side(1).level2.status, maptr::control::kL2Infeasible);
   EXPECT_DOUBLE_EQ(v.side(1).level2.relaxed, 1.4);
@@ -229,7 +230,8 @@ TEST(TopView, AnAgentItsGroupIsolatedIsShownFaultyNotDead) {
   msg::GroupStatus g;
   g.tick(1);
   g.side(msg::SIDE_L);
-  g.wear_m({0.0, 0.0});
+  g.ledger().wear_m({0.0, 0.0});
+  g.ledger().active_time_s(std::vector<double>(g.ledger().wear_m().size(), 0.0));
   g.faulty({0, static_cast<uint8_t>(msg::DIAG_SHORT)});
   v.on_group(g);
   EXPECT_EQ(v.state(0, 1), CellState::kFaulty);
