@@ -26,6 +26,15 @@ void CsvLines::write(const std::string& line) {
   std::fflush(f_);
 }
 
+void append_csv_rows(const std::string& path, const std::string& text) {
+  const auto eol = text.find('\n');
+  if (eol == std::string::npos) return;
+  std::FILE* f = std::fopen(path.c_str(), "ab");
+  if (!f) throw RecordError("cannot write " + path);
+  std::fwrite(text.data() + eol + 1, 1, text.size() - eol - 1, f);
+  std::fclose(f);
+}
+
 std::string format_value(const ColumnSpec& col, double v) {
   char buf[64];
   std::snprintf(buf, sizeof(buf), col.format, v);

@@ -47,6 +47,11 @@ class CsvLines {
   std::FILE* f_ = nullptr;
 };
 
+/// Appends the rows of the CSV text `text` (its header line left out) to the CSV file `path`,
+/// which has the same columns: one file continued by another writer (a process restarted
+/// elsewhere).
+void append_csv_rows(const std::string& path, const std::string& text);
+
 /// A CsvLines of records of type Row, each line made by `Format`.
 template <class Row, std::string (*Format)(const Row&)>
 class RowWriter {

@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "deploy/fleet/hosts.hpp"
+#include "records/csv.hpp"
 
 namespace maptr::deploy::fleet {
 
@@ -25,13 +26,12 @@ std::string file_text(const fs::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-/// Appends `text` to `path`; for a CSV file, without its first line (the header).
-void append(const fs::path& path, std::string text) {
-  if (path.extension() == ".csv") {
-    const auto eol = text.find('\n');
-    text = eol == std::string::npos ? "" : text.substr(eol + 1);
-  }
-  std::ofstream(path, std::ios::binary | std::ios::app) << text;
+/// Appends `text` to `path`: a CSV file's rows (records/csv.hpp), a log's lines.
+void append(const fs::path& path, const std::string& text) {
+  if (path.extension() == ".csv")
+    records::append_csv_rows(path.string(), text);
+  else
+    std::ofstream(path, std::ios::binary | std::ios::app) << text;
 }
 }  // namespace
 

@@ -28,6 +28,10 @@ std::string domain_problem(int domain, int agents) {
 
 std::string secure_problem(const LaunchOptions& o) {
   if (!o.secure) return "";
+  if (o.scenario.hosts.enabled())
+    return "--secure with hosts (--hosts N, hosts.count " + std::to_string(o.scenario.hosts.count) +
+           "): a fleet on several hosts finds itself through its hosts' discovery servers, and a secure "
+           "fleet has none (simple discovery): run it on one host";
   for (const auto& f : o.scenario.faults)
     if (f.target == fleet::kDiscoveryTarget)
       return "--secure: faults[] target 'discovery': a secure fleet uses simple discovery and has no "

@@ -535,6 +535,17 @@ TEST_F(Hosts, AHostWithoutABinaryStopsTheRunBeforeAnythingStarts) {
   }
 }
 
+TEST(HostsRefused, ASecureFleetOnSeveralHostsExitsTwoBeforeAnythingStarts) {
+  // Several hosts find each other through discovery servers, which a secure fleet does not have:
+  // the combination is refused rather than run silently on one host.
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  const auto r = run_cli(run_args(out, {"--secure", "--hosts", "3", "--duration", "1"}), out, 60);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--secure with hosts"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/fleet.json")) << "a process started";
+}
+
 TEST(HostsWithoutRoot, ExitTwoAndSayWhy) {
   TempDir tmp;
   const passwd* nobody = getpwnam("nobody");
