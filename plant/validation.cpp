@@ -18,10 +18,12 @@ msg::FleetBounds bounds(const SampleLimits& l) {
 }
 }  // namespace
 
+bool well_formed(const msg::AgentReply& r, const SampleLimits& l) { return msg::well_formed(r, bounds(l)); }
+
 bool valid(const msg::AgentReply& r, const SampleLimits& l) {
   // The rule beside the IDL type, and a voltage the side's driver can apply with the side's
   // battery now: [0, V_B], or [-V_B, V_B] with an H-bridge.
-  if (!msg::well_formed(r, bounds(l))) return false;
+  if (!well_formed(r, l)) return false;
   const double limit = l.battery_V[r.side()] + l.voltage_tolerance_V;
   return r.voltage_V() <= limit && r.voltage_V() >= (l.bidirectional ? -limit : 0.0);
 }

@@ -21,9 +21,15 @@ struct SampleLimits {
   double w_bound_radps = 1e2;         ///< largest |yaw rate reference|, rad/s
 };
 
+/// The rule of the sample's type, and for an agent reply a voltage its side's driver can apply
+/// with the side's battery now (the battery at the current tick).
 bool valid(const msg::AgentReply& r, const SampleLimits& l);
 bool valid(const msg::GroupStatus& g, const SampleLimits& l);
 bool valid(const msg::CentralCommand& c, const SampleLimits& l);
+/// The rule of the sample's type alone: what any answer must meet, whichever tick it answers.
+bool well_formed(const msg::AgentReply& r, const SampleLimits& l);
+inline bool well_formed(const msg::GroupStatus& g, const SampleLimits& l) { return valid(g, l); }
+inline bool well_formed(const msg::CentralCommand& c, const SampleLimits& l) { return valid(c, l); }
 /// A membership event: the rule of its type, and its node kind, side and index are those of
 /// the process it names (an agent's from its name, a group's side, central, the plant).
 bool valid(const msg::MembershipEvent& e, const SampleLimits& l);
@@ -38,11 +44,15 @@ bool drives(const msg::AgentReply& r);
 /// kForged: well-formed, but its writer is not the process the sample speaks for.
 enum class Verdict { kAccepted, kMalformed, kOtherTick, kForged };
 
-/// Whether a sample counts for tick k: well-formed and answering k.
+/// Whether a sample counts for tick k: well-formed, answering k, and possible at k. What is
+/// physically possible is judged at the tick the sample answers: the limits are those of tick
+/// k, so an answer to another tick (a copy of the previous tick's answer, whose full-duty
+/// voltage was the battery's a tick ago) meets the rule of its type only.
 template <class Sample>
 Verdict check(const Sample& s, const SampleLimits& l, long long k) {
-  if (!valid(s, l)) return Verdict::kMalformed;
+  if (!well_formed(s, l)) return Verdict::kMalformed;
   if (static_cast<long long>(s.tick()) != k) return Verdict::kOtherTick;
+  if (!valid(s, l)) return Verdict::kMalformed;
   return Verdict::kAccepted;
 }
 

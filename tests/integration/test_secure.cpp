@@ -134,7 +134,9 @@ TEST(Secure, TheFleetRunsWithThePlainTraceAndOutsidersNeitherReceiveNorAreReceiv
   EXPECT_EQ(s["status"], "ok");
   EXPECT_EQ(s["trace_sha256"], plain["trace_sha256"]) << "--secure or the outsiders changed the run";
   // Nothing they wrote even reached a process of the fleet.
-  EXPECT_EQ(total_rejected(s), 0) << s["rejected_samples"].dump();
+  EXPECT_EQ(total_rejected(s), 0) << s["rejected_samples"].dump() << "\n"
+                                   << s["rejected_by_kind"].dump() << "\n"
+                                   << read_text(out + "/logs/plant.log");
 }
 
 TEST(Secure, ACertifiedParticipantCannotWriteTicksAndItsRepliesUnderAnotherNameAreDropped) {

@@ -347,6 +347,19 @@ TEST(PlantValidation, OnlyTheCurrentTickCounts) {
   EXPECT_EQ(check(r, limits(), 8), Verdict::kMalformed);  // malformed whatever its tick
 }
 
+TEST(PlantValidation, TheBatteryBoundsTheVoltageOfTheTickAnsweredOnly) {
+  // Full duty at tick 6 on a battery that has since sagged to 22.0 V: the copy that arrives
+  // at tick 7 (a follower answered a resent tick 6 again) is a copy, not a malformed sample.
+  auto r = reply();  // right side: 22.0 V now
+  r.tick(6);
+  r.voltage_V(22.0 + 1e-3);
+  EXPECT_EQ(check(r, limits(), 7), Verdict::kOtherTick);
+  EXPECT_TRUE(plant::repeated(check(r, limits(), 7), r.tick(), 7));
+  // The same voltage answering the current tick is more than the battery gives now.
+  r.tick(7);
+  EXPECT_EQ(check(r, limits(), 7), Verdict::kMalformed);
+}
+
 TEST(PlantValidation, AnAnswerOneTickOldIsACopyOlderIsLateNewerIsNeither) {
   // At tick 9: an answer to 8 is a copy after a repeated tick, one to 7 or before came late.
   EXPECT_TRUE(plant::repeated(Verdict::kOtherTick, 8, 9));
