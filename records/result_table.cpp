@@ -120,6 +120,11 @@ ResultTableWriter::ResultTableWriter(const std::string& path, std::vector<Result
 
 void ResultTableWriter::append(const json& row) { out_ << layout_.csv_row(row) << std::flush; }
 
-void write_text_file(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+void write_text_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+  f.flush();
+  if (!f) throw RecordError(path + ": cannot be written");
+}
 
 }  // namespace maptr::records

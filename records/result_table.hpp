@@ -60,7 +60,8 @@ class ResultTableWriter {
 /// records::RecordError when one is missing or a number is malformed.
 std::vector<nlohmann::json> read_result_table(const std::string& path, const std::vector<ResultColumn>& cols);
 
-/// Writes `text` to `path` (a markdown table, a plot script).
+/// Writes `text` to `path` (a markdown table, a plot script, a JUnit file); throws RecordError
+/// when it cannot be written.
 void write_text_file(const std::string& path, const std::string& text);
 
 }  // namespace maptr::records

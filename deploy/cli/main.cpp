@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|fields|level2|experiment|compare|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|top|ps|replay|plot`).
+// dispatches (`maptr run|fields|level2|experiment|compare|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|check|top|ps|replay|plot`).
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <exception>
@@ -7,6 +7,7 @@
 #include <iostream>
 #include <vector>
 
+#include "deploy/cli/check_command.hpp"
 #include "deploy/cli/fields_command.hpp"
 #include "deploy/cli/fleet_signal.hpp"
 #include "deploy/cli/fuzz_command.hpp"
@@ -50,6 +51,7 @@ class Commands {
         signal("pause", pause_),
         signal("resume", resume_),
         {add_soak_command(app, soak_), [this, bin] { return cmd_soak(soak_, bin); }},
+        {add_check_command(app, check_), [this] { return cmd_check(check_); }},
         signal("kill-host", kill_host_),
         signal("partition", partition_),
         signal("heal", heal_),
@@ -78,6 +80,7 @@ class Commands {
   BenchArgs bench_;
   CompareArgs compare_;
   FuzzArgs fuzz_;
+  CheckArgs check_;
   SignalArgs kill_, restart_, pause_, resume_, kill_host_, partition_, heal_;
   TopArgs top_;
   PsArgs ps_;

@@ -1,0 +1,101 @@
+#include "deploy/cli/check_command.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+#include "config/scenario.hpp"
+#include "deploy/fleet/run_properties.hpp"
+#include "records/junit.hpp"
+#include "records/result_table.hpp"
+#include "records/run_files.hpp"
+#include "records/trace.hpp"
+
+namespace maptr::deploy::cli {
+
+namespace {
+constexpr int kExitOk = 0, kExitBroken = 1, kExitBadInput = 2;
+namespace props = deploy::properties;
+
+/// The history of the run in `dir`; throws std::runtime_error naming what is missing.
+props::History load(const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(dir)) throw std::runtime_error(dir + ": not a folder");
+  props::History h;
+  h.summary = records::read_json_object(records::summary_path(dir));
+  if (h.summary.empty())
+    throw std::runtime_error(records::summary_path(dir) + ": missing or not a JSON object (a run that did not end?)");
+  h.trace = records::read_trace(records::trace_path(dir));
+  h.recording_file = fs::exists(records::mcap_path(dir));
+  const std::string scenario = dir + "/scenario.yaml";
+  if (fs::exists(scenario)) {
+    const auto sc = config::load_scenario(scenario);
+    h.record = sc.record;
+    h.path_tolerance_m = sc.control.path_tolerance_m;
+  }
+  return h;
+}
+}  // namespace
+
+CLI::App* add_check_command(CLI::App& app, CheckArgs& a) {
+  auto* c = app.add_subcommand("check", "check properties of a finished run over its summary, trace and recording");
+  c->add_option("run", a.run, "the run folder");
+  c->add_option("--property", a.properties,
+                "NAME or NAME:ARG (repeatable; default: every property with its default argument; --list names them)");
+  c->add_option("--junit", a.junit, "also write a JUnit XML file, one test case per property");
+  c->add_flag("--list", a.list, "list the properties and what each checks");
+  c->add_flag("--markdown", a.markdown, "with --list: as the markdown of docs/PROPERTIES.md");
+  return c;
+}
+
+int cmd_check(const CheckArgs& a) {
+  if (a.list) {
+    std::cout << props::reference(a.markdown);
+    return kExitOk;
+  }
+  if (a.run.empty()) {
+    std::fprintf(stderr, "maptr check: RUN: a run folder is needed (or --list)\n");
+    return kExitBadInput;
+  }
+  std::vector<props::Spec> specs;
+  try {
+    for (const auto& p : a.properties) specs.push_back(props::parse_spec(p));
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "maptr check: --property %s\n", e.what());
+    return kExitBadInput;
+  }
+  if (specs.empty()) specs = props::all_specs();
+  props::History h;
+  try {
+    h = load(a.run);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "maptr check: %s\n", e.what());
+    return kExitBadInput;
+  }
+  std::vector<records::JunitCase> cases;
+  int broken = 0;
+  for (const auto& s : specs) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto v = props::evaluate(s, h);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    broken += !v.holds;
+    std::string where = v.holds ? "" : v.tick >= 0 ? "tick " + std::to_string(v.tick) : "";
+    std::printf("%-24s %-6s %-12s %s\n", v.property.c_str(), v.holds ? "holds" : "BROKE", where.c_str(),
+                v.reason.c_str());
+    cases.push_back({v.property, "maptr.check", dt, v.holds ? "" : (where.empty() ? "" : where + ": ") + v.reason});
+  }
+  std::printf("%zu properties, %d broke (%s)\n", specs.size(), broken, a.run.c_str());
+  if (!a.junit.empty()) {
+    try {
+      records::write_text_file(a.junit, records::junit_xml("maptr check " + a.run, cases));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "maptr check: --junit %s: %s\n", a.junit.c_str(), e.what());
+      return kExitBadInput;
+    }
+  }
+  return broken ? kExitBroken : kExitOk;
+}
+
+}  // namespace maptr::deploy::cli
