@@ -2,16 +2,12 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 
-#include "config/scenario.hpp"
-#include "deploy/fleet/run_properties.hpp"
+#include "deploy/fleet/run_history.hpp"
 #include "records/junit.hpp"
 #include "records/result_table.hpp"
-#include "records/run_files.hpp"
-#include "records/trace.hpp"
 
 namespace maptr::deploy::cli {
 
@@ -19,24 +15,6 @@ namespace {
 constexpr int kExitOk = 0, kExitBroken = 1, kExitBadInput = 2;
 namespace props = deploy::properties;
 
-/// The history of the run in `dir`; throws std::runtime_error naming what is missing.
-props::History load(const std::string& dir) {
-  namespace fs = std::filesystem;
-  if (!fs::is_directory(dir)) throw std::runtime_error(dir + ": not a folder");
-  props::History h;
-  h.summary = records::read_json_object(records::summary_path(dir));
-  if (h.summary.empty())
-    throw std::runtime_error(records::summary_path(dir) + ": missing or not a JSON object (a run that did not end?)");
-  h.trace = records::read_trace(records::trace_path(dir));
-  h.recording_file = fs::exists(records::mcap_path(dir));
-  const std::string scenario = dir + "/scenario.yaml";
-  if (fs::exists(scenario)) {
-    const auto sc = config::load_scenario(scenario);
-    h.record = sc.record;
-    h.path_tolerance_m = sc.control.path_tolerance_m;
-  }
-  return h;
-}
 }  // namespace
 
 CLI::App* add_check_command(CLI::App& app, CheckArgs& a) {
@@ -69,7 +47,7 @@ int cmd_check(const CheckArgs& a) {
   if (specs.empty()) specs = props::all_specs();
   props::History h;
   try {
-    h = load(a.run);
+    h = props::load_history(a.run);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "maptr check: %s\n", e.what());
     return kExitBadInput;

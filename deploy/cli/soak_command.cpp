@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "comm/posix/shm_files.hpp"
@@ -22,10 +23,13 @@
 #include "deploy/cli/soak_leftovers.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/launcher.hpp"
+#include "deploy/fleet/run_history.hpp"
 #include "deploy/fleet/shm_segments.hpp"
 #include "deploy/fleet/soak.hpp"
 #include "deploy/fleet/summary_build.hpp"
 #include "model/params.hpp"
+#include "records/junit.hpp"
+#include "records/result_table.hpp"
 #include "records/run_files.hpp"
 
 namespace maptr::deploy::cli {
@@ -135,6 +139,8 @@ struct Soak {
   soak::Band band;
   nlohmann::json reference, fleets = nlohmann::json::array();
   Totals totals;
+  std::vector<properties::Spec> specs;  ///< --property
+  std::vector<records::JunitCase> cases;  ///< one per fleet, for --junit
 };
 
 }  // namespace
@@ -153,10 +159,31 @@ CLI::App* add_soak_command(CLI::App& app, SoakArgs& a) {
       ->check(CLI::Range(0, kMaxDomain));
   c->add_option("--fleet-timeout", a.fleet_timeout_s, "wall seconds after which a fleet fails")
       ->check(CLI::Range(10.0, 86400.0));
+  c->add_option("--property", a.properties,
+                "also check NAME[:ARG] over each fleet, as `maptr check` does (repeatable; maptr check --list)");
+  c->add_option("--junit", a.junit, "also write a JUnit XML file, one test case per fleet");
   return c;
 }
 
 namespace {
+
+/// DIR/repro.yaml for a failing fleet: the scenario its launcher resolved (the fleet's own
+/// input when the launcher wrote none) under what broke; its path, "" when there is no scenario.
+std::string write_repro(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& failed,
+                        const std::string& sha) {
+  std::string scenario = dir + "/scenario.yaml";
+  if (!fs::exists(scenario)) scenario = dir + ".yaml";
+  std::ifstream in(scenario);
+  if (!in) return "";
+  std::stringstream text;
+  text << in.rdbuf();
+  std::vector<std::string> lines;
+  for (const auto& [check, why] : failed) lines.push_back(check + ": " + why);
+  const std::string path = dir + "/repro.yaml";
+  fs::create_directories(dir);
+  records::write_text_file(path, properties::repro_yaml(text.str(), lines, sha));
+  return path;
+}
 
 /// One fleet's checks, printed and recorded; true when all of them passed.
 bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, const ShmCount& before) {
@@ -173,6 +200,19 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
     failed.push_back({"wear", why});
   for (const auto& why : soak::check_band(r.summary, s.reference, s.band)) failed.push_back({"band", why});
   for (const auto& why : soak::check_detection(r.summary)) failed.push_back({"detection", why});
+  nlohmann::json verdicts = nlohmann::json::array();
+  if (!s.specs.empty()) {
+    try {
+      const auto history = properties::load_history(dir);
+      for (const auto& spec : s.specs) {
+        const auto v = properties::evaluate(spec, history);
+        verdicts.push_back({{"property", v.property}, {"holds", v.holds}, {"tick", v.tick}, {"reason", v.reason}});
+        if (!v.holds) failed.push_back({"property", v.property + " at tick " + std::to_string(v.tick) + ": " + v.reason});
+      }
+    } catch (const std::exception& e) {
+      failed.push_back({"property", std::string("no history to check: ") + e.what()});
+    }
+  }
   const auto kinds = soak::faults_by_kind(r.summary);
   for (const auto& [k, v] : kinds) s.totals.faults[k] += v;
   const std::string status = r.summary.value("status", "none");
@@ -194,6 +234,11 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
                         {"energy_dev_pct", soak::deviation_pct(r.summary.value("energy_J", 0.0),
                                                                s.reference.value("energy_J", 0.0))},
                         {"failures", nlohmann::json::array()}};
+  rec["properties"] = verdicts;
+  if (!failed.empty()) rec["repro"] = write_repro(dir, failed, r.summary.value("trace_sha256", ""));
+  std::string failures;
+  for (const auto& [check, why] : failed) failures += (failures.empty() ? "" : "\n") + check + ": " + why;
+  s.cases.push_back({"fleet-" + std::to_string(index), "maptr.soak", r.wall_s, failures});
   std::set<std::string> checks;
   for (const auto& [check, why] : failed) {
     checks.insert(check);
@@ -210,6 +255,8 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
       rec["energy_dev_pct"].get<double>(), r.wall_s, failed.empty() ? "PASS" : "FAIL", s.totals.applied(),
       s.a.faults);
   for (const auto& [check, why] : failed) std::printf("soak:   %s: %s\n", check.c_str(), why.c_str());
+  if (rec.contains("repro") && !rec["repro"].get<std::string>().empty())
+    std::printf("soak:   reproducer %s\n", rec["repro"].get<std::string>().c_str());
   std::fflush(stdout);
   s.fleets.push_back(rec);
   return failed.empty();
@@ -251,6 +298,7 @@ void write_report(const Soak& s) {
                       {"statuses", s.totals.statuses},
                       {"fleet_results", s.fleets}};
   records::write_json_file(s.out + "/soak.json", j);
+  if (!s.a.junit.empty()) records::write_text_file(s.a.junit, records::junit_xml("maptr soak " + s.out, s.cases));
 }
 
 /// The soak's scenario and folder, checked; throws config::ScenarioError on bad input.
@@ -260,11 +308,25 @@ void set_up(Soak& s) {
   config::set_field(s.sc, "agents", std::to_string(s.a.agents), "--agents");
   s.sc.faults.clear();
   s.sc.validate();
+  for (const auto& p : s.a.properties) {
+    try {
+      s.specs.push_back(properties::parse_spec(p));
+    } catch (const std::invalid_argument& e) {
+      throw config::ScenarioError(std::string("--property ") + e.what());
+    }
+  }
   s.domain = resolve_domain(s.a.domain);
   if (const std::string why = domain_problem(s.domain, s.sc.robot.agents); !why.empty())
     throw config::ScenarioError(why);
   s.out = s.a.out.empty() ? unique_run_dir("runs", "soak-" + std::to_string(s.a.seed)) : s.a.out;
   fs::create_directories(s.out);
+  if (!s.a.junit.empty()) {
+    try {
+      records::write_text_file(s.a.junit, records::junit_xml("maptr soak " + s.out, {}));
+    } catch (const records::RecordError& e) {
+      throw config::ScenarioError(std::string("--junit ") + e.what());
+    }
+  }
 }
 
 }  // namespace

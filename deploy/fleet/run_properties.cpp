@@ -95,8 +95,9 @@ Verdict faults_detected(const Spec& s, const History& h) {
   const double limit = *s.arg;
   int n = 0;
   const auto& f = h.summary.contains("failures") ? h.summary["failures"] : nlohmann::json::array();
+  static const std::set<std::string> kEnds = {"restart", "resume", "clear", "heal"};  // the end of a fault
   for (const auto& e : f) {
-    if (!e.contains("detected_s")) continue;
+    if (!e.contains("detected_s") || kEnds.count(e.value("action", ""))) continue;
     const std::string what = e.value("target", "?") + " " + e.value("action", "?") +
                              (e.contains("mode") && e["mode"].is_string() ? " " + e["mode"].get<std::string>() : "");
     const double at = number(e, "at_s", 0);
@@ -219,7 +220,7 @@ const std::vector<Entry>& entries() {
        path_tracked},
       {{"faults_detected", "limit, simulated s", 1.0, 0.0, 1e6,
         "Every fault of the summary's failures that is to be detected (a kill, a pause, an agent fault: those "
-        "with detected_s) is detected within ARG simulated seconds of its act."},
+        "with detected_s; not a restart, resume, clear or heal) is detected within ARG simulated seconds of its act."},
        faults_detected},
       {{"no_false_detection", "", std::nullopt, 0, 0,
         "No group isolated a healthy agent (plant.agent_faults.diagnoses[].false_detection)."},

@@ -104,8 +104,10 @@ TEST(RunProperties, FaultsDetectedWithinTheLimitAndNeverDetectedBreaks) {
   v = check("faults_detected", h);
   EXPECT_FALSE(v.holds);
   EXPECT_NE(v.reason.find("never detected"), std::string::npos) << v.reason;
-  // A restart is no fault to detect.
-  h.summary["failures"] = nlohmann::json::array({{{"action", "restart"}, {"target", "L3"}, {"at_s", 0.5}}});
+  // The end of a fault is no fault to detect, even when the summary says when it was seen.
+  h.summary["failures"] = nlohmann::json::array(
+      {{{"action", "restart"}, {"target", "L3"}, {"at_s", 0.5}},
+       {{"action", "resume"}, {"target", "L2"}, {"at_s", 0.5}, {"detected_s", 0.9}}});
   EXPECT_TRUE(check("faults_detected", h).holds);
 }
 
