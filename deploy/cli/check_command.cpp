@@ -1,6 +1,9 @@
 #include "deploy/cli/check_command.hpp"
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
@@ -28,6 +31,51 @@ CLI::App* add_check_command(CLI::App& app, CheckArgs& a) {
   return c;
 }
 
+std::vector<props::Spec> property_specs(const std::vector<std::string>& values) {
+  std::vector<props::Spec> specs;
+  for (const auto& p : values) {
+    try {
+      specs.push_back(props::parse_spec(p));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--property ") + e.what());
+    }
+  }
+  return specs;
+}
+
+std::vector<props::Verdict> check_run(const std::string& run_dir, const std::vector<props::Spec>& specs,
+                                      std::vector<records::JunitCase>* cases) {
+  const auto h = props::load_history(run_dir);
+  std::vector<props::Verdict> out;
+  for (const auto& s : specs) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto v = props::evaluate(s, h);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::string where = v.holds || v.tick < 0 ? "" : "tick " + std::to_string(v.tick);
+    std::printf("%-24s %-6s %-12s %s\n", v.property.c_str(), v.holds ? "holds" : "BROKE", where.c_str(),
+                v.reason.c_str());
+    if (cases) cases->push_back({v.property, "maptr.check", dt, v.holds ? "" : (where.empty() ? "" : where + ": ") + v.reason});
+    out.push_back(v);
+  }
+  std::fflush(stdout);
+  return out;
+}
+
+std::string write_repro(const std::string& run_dir, const std::vector<std::string>& what_broke,
+                        const std::string& trace_sha256, const std::string& fallback_scenario) {
+  namespace fs = std::filesystem;
+  std::string scenario = run_dir + "/scenario.yaml";
+  if (!fs::exists(scenario)) scenario = fallback_scenario;
+  std::ifstream in(scenario);
+  if (scenario.empty() || !in) return "";
+  std::stringstream text;
+  text << in.rdbuf();
+  fs::create_directories(run_dir);
+  const std::string path = run_dir + "/repro.yaml";
+  records::write_text_file(path, props::repro_yaml(text.str(), what_broke, trace_sha256));
+  return path;
+}
+
 int cmd_check(const CheckArgs& a) {
   if (a.list) {
     std::cout << props::reference(a.markdown);
@@ -39,31 +87,22 @@ int cmd_check(const CheckArgs& a) {
   }
   std::vector<props::Spec> specs;
   try {
-    for (const auto& p : a.properties) specs.push_back(props::parse_spec(p));
+    specs = property_specs(a.properties);
   } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "maptr check: --property %s\n", e.what());
+    std::fprintf(stderr, "maptr check: %s\n", e.what());
     return kExitBadInput;
   }
   if (specs.empty()) specs = props::all_specs();
-  props::History h;
+  std::vector<records::JunitCase> cases;
+  std::vector<props::Verdict> verdicts;
   try {
-    h = props::load_history(a.run);
+    verdicts = check_run(a.run, specs, &cases);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "maptr check: %s\n", e.what());
     return kExitBadInput;
   }
-  std::vector<records::JunitCase> cases;
   int broken = 0;
-  for (const auto& s : specs) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto v = props::evaluate(s, h);
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    broken += !v.holds;
-    std::string where = v.holds ? "" : v.tick >= 0 ? "tick " + std::to_string(v.tick) : "";
-    std::printf("%-24s %-6s %-12s %s\n", v.property.c_str(), v.holds ? "holds" : "BROKE", where.c_str(),
-                v.reason.c_str());
-    cases.push_back({v.property, "maptr.check", dt, v.holds ? "" : (where.empty() ? "" : where + ": ") + v.reason});
-  }
+  for (const auto& v : verdicts) broken += !v.holds;
   std::printf("%zu properties, %d broke (%s)\n", specs.size(), broken, a.run.c_str());
   if (!a.junit.empty()) {
     try {

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "comm/dds/dds.hpp"
+#include "deploy/cli/check_command.hpp"
 #include "deploy/cli/paths.hpp"
 #include "deploy/fleet/fault_schedule.hpp"
 #include "deploy/fleet/hosts.hpp"
@@ -134,6 +135,9 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
       app.add_subcommand("run", "launch the fleet (plant, central, 2 groups, N agents) for one scenario");
   run->add_option("scenario", a.scenario, "scenario YAML (default: deploy/scenarios/default.yaml)");
   run->add_option("--agents", a.agents, "number of agents N (multiple of 4)");
+  run->add_option("--property", a.properties,
+                  "check NAME[:ARG] over the run at its end, as maptr check does; one that breaks: repro.yaml, exit 1 "
+                  "(repeatable)");
   run->add_option("--gross-kg", a.gross_kg, "gross mass, kg");
   run->add_option("--motor", a.motor, "motor type I or II");
   run->add_option("--driver", a.driver, "motor driver: unidirectional (no braking) or bidirectional (H-bridge)");
@@ -235,10 +239,34 @@ Scenario scenario_from(const RunArgs& a) {
   return s;
 }
 
+/// The --property checks at the end of a run: a line each; when one breaks, repro.yaml in the
+/// run folder and exit code 1.
+static int check_properties(const std::string& run_dir, const std::vector<properties::Spec>& specs,
+                     const nlohmann::json& summary, int rc) {
+  std::vector<std::string> broke;
+  try {
+    for (const auto& v : check_run(run_dir, specs))
+      if (!v.holds) broke.push_back(v.property + " at tick " + std::to_string(v.tick) + ": " + v.reason);
+  } catch (const std::exception& e) {
+    std::cout << "properties  not checked: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  if (broke.empty()) return rc;
+  const std::string repro = write_repro(run_dir, broke, summary.value("trace_sha256", ""));
+  std::cout << "properties  " << broke.size() << " of " << specs.size() << " broke"
+            << (repro.empty() ? "" : "; reproducer " + repro + " (maptr run " + repro + ")") << "\n";
+  return kExitFailed;
+}
+
 int cmd_run(const RunArgs& a, const std::string& bin_dir) {
   LaunchOptions o;
+  std::vector<properties::Spec> specs;
   try {
+    specs = property_specs(a.properties);
     o.scenario = checked_scenario(a);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+    return kExitBadInput;
   } catch (const ScenarioError& e) {
     std::cerr << "maptr: " << e.what() << "\n";
     return kExitBadInput;
@@ -277,7 +305,8 @@ int cmd_run(const RunArgs& a, const std::string& bin_dir) {
   if (o.scenario.record != "none") std::cout << "recording   " << o.run_dir << "/run.mcap (maptr replay RUN)\n";
   if (std::filesystem::exists(o.run_dir + "/run.png")) std::cout << "picture     " << o.run_dir << "/run.png\n";
   const std::string st = summary.value("status", "");
-  const int rc = st == "ok" ? kExitOk : (st.rfind("degraded", 0) == 0 ? kExitDegraded : kExitFailed);
+  int rc = st == "ok" ? kExitOk : (st.rfind("degraded", 0) == 0 ? kExitDegraded : kExitFailed);
+  if (!specs.empty()) rc = check_properties(o.run_dir, specs, summary, rc);
   if (comm::participant_left_open()) {
     // Fast DDS never finished deleting a participant (launcher.cpp): its factory's static
     // destructor would wait on it again, so the results are flushed and the process ends here.

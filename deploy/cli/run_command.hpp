@@ -26,6 +26,7 @@ struct RunArgs {
   long long chaos = -1;
   std::string transport = "auto";
   double stall_timeout_s = 0.0;  ///< --stall-timeout S (0: the launcher's default)
+  std::vector<std::string> properties;  ///< --property NAME[:ARG], checked at the end (maptr check)
 };
 
 /// The `run` subcommand and its options, bound to `a`.
@@ -35,7 +36,8 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a);
 /// where a command-line option becomes a scenario field. Throws ScenarioError or ParamError.
 config::Scenario scenario_from(const RunArgs& a);
 
-/// Runs the fleet; exit code 0 ok, 3 degraded, 1 failed, 2 bad scenario or options.
+/// Runs the fleet; exit code 0 ok, 3 degraded, 1 failed or a --property broke (the run folder
+/// then holds repro.yaml), 2 bad scenario or options.
 int cmd_run(const RunArgs& a, const std::string& bin_dir);
 
 }  // namespace maptr::deploy::cli

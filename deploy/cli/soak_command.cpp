@@ -19,11 +19,11 @@
 
 #include "comm/posix/shm_files.hpp"
 #include "config/scenario.hpp"
+#include "deploy/cli/check_command.hpp"
 #include "deploy/cli/paths.hpp"
 #include "deploy/cli/soak_leftovers.hpp"
 #include "deploy/fleet/children.hpp"
 #include "deploy/fleet/launcher.hpp"
-#include "deploy/fleet/run_history.hpp"
 #include "deploy/fleet/shm_segments.hpp"
 #include "deploy/fleet/soak.hpp"
 #include "deploy/fleet/summary_build.hpp"
@@ -167,24 +167,6 @@ CLI::App* add_soak_command(CLI::App& app, SoakArgs& a) {
 
 namespace {
 
-/// DIR/repro.yaml for a failing fleet: the scenario its launcher resolved (the fleet's own
-/// input when the launcher wrote none) under what broke; its path, "" when there is no scenario.
-std::string write_repro(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& failed,
-                        const std::string& sha) {
-  std::string scenario = dir + "/scenario.yaml";
-  if (!fs::exists(scenario)) scenario = dir + ".yaml";
-  std::ifstream in(scenario);
-  if (!in) return "";
-  std::stringstream text;
-  text << in.rdbuf();
-  std::vector<std::string> lines;
-  for (const auto& [check, why] : failed) lines.push_back(check + ": " + why);
-  const std::string path = dir + "/repro.yaml";
-  fs::create_directories(dir);
-  records::write_text_file(path, properties::repro_yaml(text.str(), lines, sha));
-  return path;
-}
-
 /// One fleet's checks, printed and recorded; true when all of them passed.
 bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, const ShmCount& before) {
   std::vector<std::pair<std::string, std::string>> failed;  // (check, why)
@@ -203,9 +185,7 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
   nlohmann::json verdicts = nlohmann::json::array();
   if (!s.specs.empty()) {
     try {
-      const auto history = properties::load_history(dir);
-      for (const auto& spec : s.specs) {
-        const auto v = properties::evaluate(spec, history);
+      for (const auto& v : check_run(dir, s.specs)) {
         verdicts.push_back({{"property", v.property}, {"holds", v.holds}, {"tick", v.tick}, {"reason", v.reason}});
         if (!v.holds) failed.push_back({"property", v.property + " at tick " + std::to_string(v.tick) + ": " + v.reason});
       }
@@ -235,7 +215,11 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
                                                                s.reference.value("energy_J", 0.0))},
                         {"failures", nlohmann::json::array()}};
   rec["properties"] = verdicts;
-  if (!failed.empty()) rec["repro"] = write_repro(dir, failed, r.summary.value("trace_sha256", ""));
+  if (!failed.empty()) {
+    std::vector<std::string> lines;
+    for (const auto& [check, why] : failed) lines.push_back(check + ": " + why);
+    rec["repro"] = write_repro(dir, lines, r.summary.value("trace_sha256", ""), dir + ".yaml");
+  }
   std::string failures;
   for (const auto& [check, why] : failed) failures += (failures.empty() ? "" : "\n") + check + ": " + why;
   s.cases.push_back({"fleet-" + std::to_string(index), "maptr.soak", r.wall_s, failures});
@@ -308,12 +292,10 @@ void set_up(Soak& s) {
   config::set_field(s.sc, "agents", std::to_string(s.a.agents), "--agents");
   s.sc.faults.clear();
   s.sc.validate();
-  for (const auto& p : s.a.properties) {
-    try {
-      s.specs.push_back(properties::parse_spec(p));
-    } catch (const std::invalid_argument& e) {
-      throw config::ScenarioError(std::string("--property ") + e.what());
-    }
+  try {
+    s.specs = property_specs(s.a.properties);
+  } catch (const std::invalid_argument& e) {
+    throw config::ScenarioError(e.what());
   }
   s.domain = resolve_domain(s.a.domain);
   if (const std::string why = domain_problem(s.domain, s.sc.robot.agents); !why.empty())

@@ -81,4 +81,34 @@ TEST(Check, ACleanDefaultRunHoldsEveryPropertyAndItsJUnitFileSaysSo) {
   EXPECT_NE(printed.find("no-such-run: not a folder"), std::string::npos) << printed;
 }
 
+/// The first "BROKE  tick N" of maptr's output, "" when none.
+std::string broken_tick(const std::string& out) {
+  const auto at = out.find("BROKE  tick ");
+  if (at == std::string::npos) return "";
+  return out.substr(at + 12, out.find(' ', at + 12) - (at + 12));
+}
+
+// `maptr run --chaos SEED --property ...`: a property that breaks gives exit 1 and repro.yaml,
+// the chaos drawn into scheduled faults; running repro.yaml gives the same trace and the same
+// break at the same tick.
+TEST(Check, AChaosRunThatBreaksAPropertyLeavesAReproducerThatBreaksItAgain) {
+  TempDir tmp;
+  const std::string first = tmp.path() + "/chaos", again = tmp.path() + "/again";
+  const CliResult r = run_cli({"run", "--agents", "8", "--duration", "20", "--chaos", "5", "--property",
+                               "max_dead_per_side:0", "--out", first, "--domain", std::to_string(private_domain())},
+                              first, 600);
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  const std::string tick = broken_tick(r.output);
+  ASSERT_FALSE(tick.empty()) << r.output;
+  EXPECT_NE(r.output.find("properties  1 of 1 broke; reproducer " + first + "/repro.yaml"), std::string::npos)
+      << r.output;
+  const CliResult rerun = run_cli({"run", first + "/repro.yaml", "--property", "max_dead_per_side:0", "--out", again,
+                                   "--domain", std::to_string(private_domain())},
+                                  again, 600);
+  EXPECT_EQ(rerun.exit_code, 1) << rerun.output;
+  EXPECT_EQ(rerun.summary["trace_sha256"], r.summary["trace_sha256"]) << "repro.yaml ran another fleet";
+  EXPECT_EQ(broken_tick(rerun.output), tick) << rerun.output;
+  EXPECT_EQ(rerun.summary["failures"].size(), r.summary["failures"].size());
+}
+
 }  // namespace
