@@ -1,5 +1,5 @@
 // maptr: the command-line front end. Each subcommand is one function; this file only
-// dispatches (`maptr run|fields|level2|experiment|compare|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|check|top|ps|replay|plot`).
+// dispatches (`maptr run|fields|level2|experiment|compare|bench|fuzz|kill|restart|pause|resume|kill-host|partition|heal|soak|check|shrink|top|ps|replay|plot`).
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <exception>
@@ -15,6 +15,7 @@
 #include "deploy/cli/paths.hpp"
 #include "deploy/cli/record_commands.hpp"
 #include "deploy/cli/run_command.hpp"
+#include "deploy/cli/shrink_command.hpp"
 #include "deploy/cli/soak_command.hpp"
 #include "deploy/cli/study_commands.hpp"
 #include "deploy/cli/top_command.hpp"
@@ -52,6 +53,7 @@ class Commands {
         signal("resume", resume_),
         {add_soak_command(app, soak_), [this, bin] { return cmd_soak(soak_, bin); }},
         {add_check_command(app, check_), [this] { return cmd_check(check_); }},
+        {add_shrink_command(app, shrink_), [this, bin] { return cmd_shrink(shrink_, bin); }},
         signal("kill-host", kill_host_),
         signal("partition", partition_),
         signal("heal", heal_),
@@ -81,6 +83,7 @@ class Commands {
   CompareArgs compare_;
   FuzzArgs fuzz_;
   CheckArgs check_;
+  ShrinkArgs shrink_;
   SignalArgs kill_, restart_, pause_, resume_, kill_host_, partition_, heal_;
   TopArgs top_;
   PsArgs ps_;

@@ -31,7 +31,7 @@ History load_history(const std::string& dir) {
 std::string repro_yaml(const std::string& scenario_text, const std::vector<std::string>& what_broke,
                        const std::string& trace_sha256) {
   std::ostringstream os;
-  os << "# A reproducer: `maptr run repro.yaml` runs this fleet again (the lock-step is deterministic:\n"
+  os << "# A reproducer: `maptr run` of this file runs the fleet again (the lock-step is deterministic:\n"
      << "# trace_sha256 " << trace_sha256 << ") and breaks again:\n";
   for (const auto& w : what_broke) os << "#   " << w << "\n";
   os << "# `maptr check RUN --property ...` checks a run of it.\n" << scenario_text;

@@ -111,4 +111,35 @@ TEST(Check, AChaosRunThatBreaksAPropertyLeavesAReproducerThatBreaksItAgain) {
   EXPECT_EQ(rerun.summary["failures"].size(), r.summary["failures"].size());
 }
 
+// From a failing run to its smallest scenario: seven faults of which three kills of one side's
+// agents, dead together, break max_dead_per_side:2; `maptr shrink` of the run's repro.yaml
+// keeps exactly those three, cuts the run to a second after the break, and its minimal.yaml
+// breaks the property again.
+TEST(Check, ShrinkReducesAFailingRunToTheThreeKillsThatBreakIt) {
+  TempDir tmp;
+  const std::string run = tmp.path() + "/run", shrunk = tmp.path() + "/shrink", again = tmp.path() + "/again";
+  const CliResult r = run_cli({"run", "--agents", "8", "--duration", "10", "--pause", "R2@1", "--resume", "R2@2",
+                               "--kill", "L1@2", "--kill", "L2@3", "--kill", "L3@4", "--kill", "R1@5", "--restart",
+                               "R1@6", "--property", "max_dead_per_side:2", "--out", run, "--domain",
+                               std::to_string(private_domain())},
+                              run, 600);
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  ASSERT_EQ(broken_tick(r.output), "400") << r.output;
+  const auto [code, printed] = shell(maptr() + " shrink " + run + "/repro.yaml --property max_dead_per_side:2 --out " +
+                                     shrunk + " --domain " + std::to_string(private_domain()));
+  ASSERT_EQ(code, 0) << printed;
+  EXPECT_NE(printed.find("shrink: 7 -> 3 faults, 10.0 -> 5.0 s"), std::string::npos) << printed;
+  for (const char* kept : {"kill L1 at 2.00 s", "kill L2 at 3.00 s", "kill L3 at 4.00 s"})
+    EXPECT_NE(printed.find(kept), std::string::npos) << printed;
+  const auto report = maptr::testing::read_json(shrunk + "/shrink.json");
+  EXPECT_EQ(report["faults_after"], 3);
+  EXPECT_GE(report["fleets_run"].get<int>(), 3);
+  const CliResult min = run_cli({"run", shrunk + "/minimal.yaml", "--property", "max_dead_per_side:2", "--out", again,
+                                 "--domain", std::to_string(private_domain())},
+                                again, 600);
+  EXPECT_EQ(min.exit_code, 1) << min.output;
+  EXPECT_EQ(broken_tick(min.output), "400") << min.output;
+  EXPECT_EQ(min.summary["trace_sha256"], report["trace_sha256"]);
+}
+
 }  // namespace
