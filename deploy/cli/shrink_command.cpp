@@ -112,27 +112,76 @@ CLI::App* add_shrink_command(CLI::App& app, ShrinkArgs& a) {
   return c;
 }
 
-int cmd_shrink(const ShrinkArgs& a, const std::string& bin_dir) {
-  Shrinker s{a, bin_dir};
+namespace {
+/// The properties, the scenario and the folder, checked; false (after saying why) on bad input.
+bool set_up(Shrinker& s) {
+  const ShrinkArgs& a = s.a;
   try {
     s.specs = property_specs(a.properties);
     s.original = config::load_scenario(a.scenario);
     s.original.validate();
   } catch (const std::invalid_argument& e) {
     std::cerr << "maptr: " << e.what() << "\n";
-    return kExitBadInput;
+    return false;
   } catch (const config::ScenarioError& e) {
     std::cerr << "maptr: " << e.what() << "\n";
-    return kExitBadInput;
+    return false;
   } catch (const model::ParamError& e) {
     std::cerr << "maptr: " << e.what() << "\n";
-    return kExitBadInput;
+    return false;
   }
   s.domain = resolve_domain(a.domain);
   s.out = a.out.empty() ? unique_run_dir("runs", "shrink-" + s.original.name) : a.out;
   fs::create_directories(s.out);
   s.cache = records::read_json_object(s.cache_path());
   if (!s.cache.empty()) std::printf("shrink: resuming: %zu outcomes known from %s\n", s.cache.size(), s.cache_path().c_str());
+  return true;
+}
+
+/// The run's end cut to a second after the break, without the faults after it, when it still breaks.
+void cut_duration(Shrinker& s, const std::vector<int>& kept, config::Scenario& best, Outcome& best_outcome) {
+  const double cut = std::ceil(best_outcome.t_s) + 1.0;
+  if (cut >= best.duration_s) return;
+  config::Scenario shorter = best;
+  shorter.duration_s = cut;
+  auto& f = shorter.faults;
+  f.erase(std::remove_if(f.begin(), f.end(), [&](const config::FaultSpec& x) { return x.at_s >= cut; }), f.end());
+  const Outcome o = s.run(shorter, "faults:" + shrink::key(kept) + " duration:" + std::to_string(cut));
+  if (o.breaks) {
+    best = shorter;
+    best_outcome = o;
+  }
+}
+
+/// minimal.yaml and shrink.json, and the closing lines.
+void write_result(const Shrinker& s, const config::Scenario& best, const Outcome& best_outcome) {
+  const int n = static_cast<int>(s.original.faults.size());
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - s.t0).count();
+  const std::string minimal = s.out + "/minimal.yaml";
+  records::write_text_file(minimal, props::repro_yaml(config::to_yaml(best), {best_outcome.why}, best_outcome.sha));
+  const nlohmann::json report = {{"scenario", s.a.scenario},
+                                 {"properties", s.a.properties},
+                                 {"faults_before", n},
+                                 {"faults_after", best.faults.size()},
+                                 {"duration_before_s", s.original.duration_s},
+                                 {"duration_after_s", best.duration_s},
+                                 {"fleets_run", s.fleets},
+                                 {"steps", s.steps},
+                                 {"wall_s", wall},
+                                 {"minimal", minimal},
+                                 {"breaks", best_outcome.why},
+                                 {"trace_sha256", best_outcome.sha}};
+  records::write_json_file(s.out + "/shrink.json", report);
+  std::printf("shrink: %d -> %zu faults, %.1f -> %.1f s; %d fleets, %zu steps, %.0f s wall\n", n, best.faults.size(),
+              s.original.duration_s, best.duration_s, s.fleets, s.steps.size(), wall);
+  for (const auto& f : best.faults) std::printf("shrink:   %s %s at %.2f s\n", f.action.c_str(), f.target.c_str(), f.at_s);
+  std::printf("shrink: %s (maptr run %s breaks: %s)\n", minimal.c_str(), minimal.c_str(), best_outcome.why.c_str());
+}
+}  // namespace
+
+int cmd_shrink(const ShrinkArgs& a, const std::string& bin_dir) {
+  Shrinker s{a, bin_dir};
+  if (!set_up(s)) return kExitBadInput;
   install_stop_handler();
   const int n = static_cast<int>(s.original.faults.size());
   std::printf("shrink: %s, %d faults, %.1f s, %d agents; folder %s\n", a.scenario.c_str(), n, s.original.duration_s,
@@ -157,40 +206,10 @@ int cmd_shrink(const ShrinkArgs& a, const std::string& bin_dir) {
   }
   config::Scenario best = s.with_faults(kept);
   Outcome best_outcome = s.run(best, "faults:" + shrink::key(kept));
-  // 2. The run's end: one second after the break, without the faults after it.
-  const double cut = std::ceil(best_outcome.t_s) + 1.0;
-  if (cut < best.duration_s) {
-    config::Scenario shorter = best;
-    shorter.duration_s = cut;
-    auto& f = shorter.faults;
-    f.erase(std::remove_if(f.begin(), f.end(), [&](const config::FaultSpec& x) { return x.at_s >= cut; }), f.end());
-    const Outcome o = s.run(shorter, "faults:" + shrink::key(kept) + " duration:" + std::to_string(cut));
-    if (o.breaks) {
-      best = shorter;
-      best_outcome = o;
-    }
-  }
+  // 2. The run's end.
+  cut_duration(s, kept, best, best_outcome);
   if (stop_requested()) return kExitInterrupted;
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - s.t0).count();
-  const std::string minimal = s.out + "/minimal.yaml";
-  records::write_text_file(minimal, props::repro_yaml(config::to_yaml(best), {best_outcome.why}, best_outcome.sha));
-  const nlohmann::json report = {{"scenario", a.scenario},
-                                 {"properties", a.properties},
-                                 {"faults_before", n},
-                                 {"faults_after", best.faults.size()},
-                                 {"duration_before_s", s.original.duration_s},
-                                 {"duration_after_s", best.duration_s},
-                                 {"fleets_run", s.fleets},
-                                 {"steps", s.steps},
-                                 {"wall_s", wall},
-                                 {"minimal", minimal},
-                                 {"breaks", best_outcome.why},
-                                 {"trace_sha256", best_outcome.sha}};
-  records::write_json_file(s.out + "/shrink.json", report);
-  std::printf("shrink: %d -> %zu faults, %.1f -> %.1f s; %d fleets, %zu steps, %.0f s wall\n", n, best.faults.size(),
-              s.original.duration_s, best.duration_s, s.fleets, s.steps.size(), wall);
-  for (const auto& f : best.faults) std::printf("shrink:   %s %s at %.2f s\n", f.action.c_str(), f.target.c_str(), f.at_s);
-  std::printf("shrink: %s (maptr run %s breaks: %s)\n", minimal.c_str(), minimal.c_str(), best_outcome.why.c_str());
+  write_result(s, best, best_outcome);
   return kExitOk;
 }
 

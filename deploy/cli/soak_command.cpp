@@ -167,6 +167,31 @@ CLI::App* add_soak_command(CLI::App& app, SoakArgs& a) {
 
 namespace {
 
+/// The --property checks of a fleet: their verdicts, and a failure per broken one in `failed`.
+nlohmann::json check_properties(const Soak& s, const std::string& dir,
+                                std::vector<std::pair<std::string, std::string>>& failed) {
+  nlohmann::json verdicts = nlohmann::json::array();
+  if (s.specs.empty()) return verdicts;
+  try {
+    for (const auto& v : check_run(dir, s.specs)) {
+      verdicts.push_back({{"property", v.property}, {"holds", v.holds}, {"tick", v.tick}, {"reason", v.reason}});
+      if (!v.holds) failed.push_back({"property", v.property + " at tick " + std::to_string(v.tick) + ": " + v.reason});
+    }
+  } catch (const std::exception& e) {
+    failed.push_back({"property", std::string("no history to check: ") + e.what()});
+  }
+  return verdicts;
+}
+
+/// DIR/repro.yaml of a fleet that failed a check, "" when it passed them all.
+std::string fleet_repro(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& failed,
+                        const nlohmann::json& summary) {
+  if (failed.empty()) return "";
+  std::vector<std::string> lines;
+  for (const auto& [check, why] : failed) lines.push_back(check + ": " + why);
+  return write_repro(dir, lines, summary.value("trace_sha256", ""), dir + ".yaml");
+}
+
 /// One fleet's checks, printed and recorded; true when all of them passed.
 bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, const ShmCount& before) {
   std::vector<std::pair<std::string, std::string>> failed;  // (check, why)
@@ -182,17 +207,7 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
     failed.push_back({"wear", why});
   for (const auto& why : soak::check_band(r.summary, s.reference, s.band)) failed.push_back({"band", why});
   for (const auto& why : soak::check_detection(r.summary)) failed.push_back({"detection", why});
-  nlohmann::json verdicts = nlohmann::json::array();
-  if (!s.specs.empty()) {
-    try {
-      for (const auto& v : check_run(dir, s.specs)) {
-        verdicts.push_back({{"property", v.property}, {"holds", v.holds}, {"tick", v.tick}, {"reason", v.reason}});
-        if (!v.holds) failed.push_back({"property", v.property + " at tick " + std::to_string(v.tick) + ": " + v.reason});
-      }
-    } catch (const std::exception& e) {
-      failed.push_back({"property", std::string("no history to check: ") + e.what()});
-    }
-  }
+  const nlohmann::json verdicts = check_properties(s, dir, failed);
   const auto kinds = soak::faults_by_kind(r.summary);
   for (const auto& [k, v] : kinds) s.totals.faults[k] += v;
   const std::string status = r.summary.value("status", "none");
@@ -215,11 +230,7 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
                                                                s.reference.value("energy_J", 0.0))},
                         {"failures", nlohmann::json::array()}};
   rec["properties"] = verdicts;
-  if (!failed.empty()) {
-    std::vector<std::string> lines;
-    for (const auto& [check, why] : failed) lines.push_back(check + ": " + why);
-    rec["repro"] = write_repro(dir, lines, r.summary.value("trace_sha256", ""), dir + ".yaml");
-  }
+  if (!failed.empty()) rec["repro"] = fleet_repro(dir, failed, r.summary);
   std::string failures;
   for (const auto& [check, why] : failed) failures += (failures.empty() ? "" : "\n") + check + ": " + why;
   s.cases.push_back({"fleet-" + std::to_string(index), "maptr.soak", r.wall_s, failures});
