@@ -10,7 +10,8 @@
 namespace maptr::deploy::fleet {
 
 struct FleetConfig {
-  /// Discovery (every process ready) gives up after base + per_agent * N, s.
+  /// Discovery (every process ready) gives up when no process got ready for base + per_agent
+  /// * N s (at most 4 times that in all), s.
   double discovery_timeout_base_s = 30.0;
   double discovery_timeout_per_agent_s = 0.5;
   /// Agents per launch wave (the first wave also carries the plant, central and both groups).

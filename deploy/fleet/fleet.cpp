@@ -271,23 +271,29 @@ void Fleet::start_processes() {
                  kids_.size(), sc_.robot.agents);
 }
 
+/// Discovery gives up at the latest after this many times its budget in all.
+constexpr double kDiscoveryCap = 4.0;
+
 bool Fleet::discover() {
   domain_->mark_seen();
   const double timeout =
       cfg_.discovery_timeout_s(sc_.robot.agents) * (secure() ? cfg_.secure_discovery_factor : 1.0);
   last_progress_ = Clock::now();
+  // The budget runs from the last process that got ready (or wave started), not from the
+  // launch: a loaded machine is slower, not stuck; a hard cap of kDiscoveryCap budgets in all.
+  auto last_ready = Clock::now();
   while (ready_names_.size() < kids_.size()) {
     domain_->wait_until(Clock::now() + cfg_.discovery_poll);
     const std::size_t before = ready_names_.size();
     take_ready();
-    if (ready_names_.size() != before) last_progress_ = Clock::now();
+    if (ready_names_.size() != before) last_progress_ = last_ready = Clock::now();
     reap(false);
     std::vector<bool> ready(kids_.size());
     for (std::size_t i = 0; i < kids_.size(); ++i)
       ready[i] = kids_[i].external || ready_names_.count(kids_[i].name);
     if (const auto r = waves_->next(ready, since(last_wave_)); !r.empty()) {
       spawn_wave(r);
-      last_progress_ = Clock::now();
+      last_progress_ = last_ready = Clock::now();
       log_.info("launched agents up to {} of {}", r.end - kControllers, kids_.size() - kControllers);
     }
     if (since(last_progress_) > cfg_.rematch_s(sc_.robot.agents, secure())) rematch_unready();
@@ -295,7 +301,7 @@ bool Fleet::discover() {
     for (std::size_t i = 0; i < waves_->started() && !dead; ++i)
       if (!kids_[i].running && !kids_[i].external) dead = &kids_[i];
     if (dead && restart_dead(*dead)) dead = nullptr, last_progress_ = Clock::now();
-    if (dead || interrupted().load() || since(t_launch_) > timeout) {
+    if (dead || interrupted().load() || since(last_ready) > timeout || since(t_launch_) > kDiscoveryCap * timeout) {
       rec_.status = interrupted().load()
                         ? "aborted: interrupted during discovery"
                     : dead ? "aborted: a process died during discovery: " + describe_end(*dead, o_.run_dir) +

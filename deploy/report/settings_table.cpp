@@ -19,7 +19,7 @@ std::vector<config::Setting> launcher_settings() {
   // clang-format off
   return {
       {"launcher.discovery_timeout_base_s", setting_value(launcher.discovery_timeout_base_s), "s",
-       "discovery (every process ready) gives up after base + per_agent x N"},
+       "discovery (every process ready) gives up when no process got ready for base + per_agent x N (4 times that in all)"},
       {"launcher.discovery_timeout_per_agent_s", setting_value(launcher.discovery_timeout_per_agent_s), "s",
        "see discovery_timeout_base_s"},
       {"launcher.wave_size", setting_value(static_cast<int>(launcher.wave_size)), "agents",
