@@ -105,12 +105,20 @@ SshServers::SshServers(std::vector<Host>& hosts, int tag, const std::string& run
 pid_t SshServers::start_server(const Host& h, const std::string& run_dir) const {
   // Started as every child of the launcher is (its own process group, gone with the launcher),
   // in a mount namespace of its own with a fresh tmpfs at the run folder's path: the host's
-  // disk, gone with the namespace when its server ends (or is killed with the launcher).
+  // disk, gone with the namespace when its server ends (or is killed with the launcher). The
+  // login shell that runs each command there reads none of this machine's start-up files (they
+  // are empty on the host, as on a fresh machine): what this machine's own shell set-up does,
+  // however slow or broken, takes no part in the rehearsal.
+  const std::string host_disk = "mount -t tmpfs -o mode=0755 maptr-$1 \"$2\" || exit 1";
+  const std::string fresh_shell =
+      "home=$(getent passwd root | cut -d: -f6); "
+      "for f in .bashrc .bash_profile .bash_login .profile .zshenv .zshrc; do "
+      "if [ -f \"$home/$f\" ]; then mount --bind /dev/null \"$home/$f\" || exit 1; fi; done";
   // clang-format off
   const std::vector<std::string> argv = {
       "ip", "netns", "exec", h.netns,
       "unshare", "--mount", "--propagation", "private",
-      "sh", "-c", "mount -t tmpfs -o mode=0755 maptr-$1 \"$2\" && shift 2 && exec \"$@\"", "sh", h.name, run_dir,
+      "sh", "-c", host_disk + "; " + fresh_shell + "; shift 2 && exec \"$@\"", "sh", h.name, run_dir,
       kSshd, "-D", "-e", "-f", dir_ + "/sshd_config", "-o", "ListenAddress=" + h.address};
   // clang-format on
   return start_process(argv, this_environment(), dir_ + "/sshd-" + h.name + ".log", -1);

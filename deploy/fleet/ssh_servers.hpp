@@ -24,7 +24,9 @@ class SshServers {
  public:
   /// Starts a server on every host and sets each host's prefix to an ssh to it. Each server,
   /// and whatever it starts, sees a disk of its own at `run_dir` (an empty file system mounted
-  /// there in a mount namespace of its own): no host sees the launcher's run folder. Throws
+  /// there in a mount namespace of its own): no host sees the launcher's run folder. The login
+  /// shell that runs a command on a host reads none of root's start-up files (~/.bashrc and the
+  /// like are empty there, as on a fresh machine). Throws
   /// std::runtime_error (after removing what it made) when a server does not listen within 10 s.
   SshServers(std::vector<Host>& hosts, int tag, const std::string& run_dir);
   ~SshServers();
