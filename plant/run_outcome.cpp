@@ -118,6 +118,8 @@ records::PlantResults plant_results(const plant_core::PlantCore& core, const Rep
   j.distance_m = x[model::kDistance];
   j.energy_J = x[model::kEnergyL] + x[model::kEnergyR];
   j.energy_side_J = {x[model::kEnergyL], x[model::kEnergyR]};
+  j.energy_ledger = {j.energy_J, 0.0, core.kinetic_energy_J(), x[model::kLossJoule],
+                     x[model::kLossMech], x[model::kLossEmf]};
   j.mean_active_agents = core.mean_active_agents();
   j.active_agents = {core.last_active(0), core.last_active(1)};
   j.live_agents = {in.live_agents[0], in.live_agents[1]};

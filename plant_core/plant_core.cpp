@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "model/battery.hpp"
+#include "model/dynamics.hpp"
 #include "model/kinematics.hpp"
 
 namespace maptr::plant_core {
@@ -24,6 +25,10 @@ PlantCore::PlantCore(const PlantCoreConfig& c)
 
 double PlantCore::drawn_mAh(int side) const {
   return (side == 0 ? x_[model::kChargeL] : x_[model::kChargeR]) - c_.initial_discharge_mAh;
+}
+
+double PlantCore::kinetic_energy_J() const {
+  return model::kinetic_energy(c_.robot, x_[model::kVx], x_[model::kW]);
 }
 
 double PlantCore::battery_V(int side) const {

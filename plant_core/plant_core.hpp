@@ -128,6 +128,8 @@ class PlantCore {
   const std::vector<double>& active_time(int side) const { return active_time_[side]; }
   /// Charge drawn during the run (without the initial discharge), mAh.
   double drawn_mAh(int side) const;
+  /// Kinetic energy of the robot now (translation, yaw, wheels), J; the run starts from rest.
+  double kinetic_energy_J() const;
   int last_active(int side) const { return side == 0 ? last_active_L_ : last_active_R_; }
   /// How the robot has followed its path so far (the ticks held).
   const control::TrackingStats& tracking() const { return tracking_; }

@@ -61,6 +61,18 @@ struct AgentFaults {
   int false_detections = 0;
 };
 
+/// Where the energy drawn from the batteries went (the integrated ledgers of the plant's state):
+/// drawn_J = kinetic_end_J - kinetic_start_J + joule_loss_J + mech_loss_J + emf_loss_J, to the
+/// integrator's tolerance.
+struct EnergyLedger {
+  double drawn_J = 0.0;          ///< from both batteries, net of regeneration
+  double kinetic_start_J = 0.0;  ///< kinetic energy at t = 0 (translation, yaw, wheels)
+  double kinetic_end_J = 0.0;    ///< kinetic energy at the end
+  double joule_loss_J = 0.0;     ///< I^2 R in the windings + braking power the drivers dissipated
+  double mech_loss_J = 0.0;      ///< ground friction + motor friction + viscous drag
+  double emf_loss_J = 0.0;       ///< (K_e - K_T) I phidot: the datasheet's K_e != K_T
+};
+
 struct PlantResults {
   std::string status, end_reason;
   double sim_time_s = 0.0;
@@ -68,6 +80,7 @@ struct PlantResults {
   double tick_hz = 0.0, loop_wall_s = 0.0;
   double distance_m = 0.0, energy_J = 0.0;
   SideValues energy_side_J;
+  EnergyLedger energy_ledger;
   double mean_active_agents = 0.0;
   SideCounts active_agents, live_agents;
   SideValues battery_discharge_mAh, battery_state_mAh, battery_V;
@@ -96,6 +109,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PoseFigures, x_m, y_m, theta_rad
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PathFigures, cross_track_max_m, cross_track_max_t_s,
                                                 cross_track_rms_m, heading_error_max_rad,
                                                 final_position_error_m)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(EnergyLedger, drawn_J, kinetic_start_J, kinetic_end_J,
+                                                joule_loss_J, mech_loss_J, emf_loss_J)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(MembershipEvent, name, event, t_s, wall_ms)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(AgentFaultRecord, target, mode, value, injected_s, detected_s,
                                                 isolated_s, diagnosed_mode, relapses, exposed_ticks,
@@ -105,7 +120,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(DiagnosisEvent, t_s, target, eve
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(AgentFaults, faults, diagnoses, false_detections)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(
     PlantResults, status, end_reason, sim_time_s, ticks, tick_hz, loop_wall_s, distance_m, energy_J,
-    energy_side_J, mean_active_agents, active_agents, live_agents, battery_discharge_mAh, battery_state_mAh,
+    energy_side_J, energy_ledger, mean_active_agents, active_agents, live_agents, battery_discharge_mAh, battery_state_mAh,
     agent_active_s, battery_V, pose, final_speed_mps, path, max_speed_error_pct, rms_speed_error_pct,
     rejected_samples, rejected_by_process, rejected_by_kind, late_samples, missed_deadlines, tick_repairs,
     declared_dead_by_deadline, loop_scheduling, answers_taken, tick_timing_us, group_wear, membership_events,

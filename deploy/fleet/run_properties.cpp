@@ -1,5 +1,6 @@
 #include "deploy/fleet/run_properties.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -201,6 +202,26 @@ Verdict max_dead_per_side(const Spec& s, const History& h) {
   return held(s, "at most " + std::to_string(worst) + " dead per side (limit " + std::to_string(limit) + ")");
 }
 
+Verdict energy_balance(const Spec& s, const History& h) {
+  const double tol = *s.arg;
+  const double end_t = number(h.summary, "sim_time_s", h.trace.empty() ? 0.0 : h.trace.back().t_s);
+  const nlohmann::json plant = h.summary.value("plant", nlohmann::json::object());
+  if (!plant.is_object() || !plant.contains("energy_ledger") || !plant["energy_ledger"].is_object())
+    return broke(s, h, end_t, "the plant left no energy ledger (summary plant.energy_ledger)");
+  const auto& e = plant["energy_ledger"];
+  const double drawn = number(e, "drawn_J", NAN);
+  const double kinetic = number(e, "kinetic_end_J", NAN) - number(e, "kinetic_start_J", NAN);
+  const double losses = number(e, "joule_loss_J", NAN) + number(e, "mech_loss_J", NAN) + number(e, "emf_loss_J", NAN);
+  const double accounted = kinetic + losses;
+  const double scale = std::max({std::fabs(drawn), std::fabs(accounted), 1.0});
+  const double off_pct = 100.0 * std::fabs(drawn - accounted) / scale;
+  const std::string figures = "drawn " + num(drawn, 1) + " J, kinetic " + num(kinetic, 1) + " J + losses " +
+                              num(losses, 1) + " J = " + num(accounted, 1) + " J: " + num(off_pct, 4) + " % apart";
+  if (!std::isfinite(off_pct)) return broke(s, h, end_t, "the energy ledger is incomplete: " + e.dump());
+  if (off_pct > tol) return broke(s, h, end_t, figures + " (at most " + num(tol, 3) + " %)");
+  return held(s, figures);
+}
+
 using Check = Verdict (*)(const Spec&, const History&);
 struct Entry {
   Property p;
@@ -233,6 +254,11 @@ const std::vector<Entry>& entries() {
         "Neither group's wear ledger, as the plant received it, ever went backwards "
         "(plant.group_wear.<side>.regressions)."},
        ledger_monotone},
+      {{"energy_balance", "tolerance, % of the energy drawn", 0.1, 0.0, 100,
+        "The energy drawn from the batteries (net of regeneration) equals the robot's gain of kinetic energy plus "
+        "the Joule, mechanical and K_e/K_T losses, within ARG % (plant.energy_ledger, the plant's integrated "
+        "ledgers at the end of the run)."},
+       energy_balance},
       {{"no_unexpected_exit", "", std::nullopt, 0, 0,
         "No process died of a lost lease, a missed deadline, an external signal or an unknown cause before a "
         "host was killed or cut off, and none exited with an error code."},

@@ -121,6 +121,7 @@ TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {
                                          "distance_m",
                                          "energy_J",
                                          "energy_side_J",
+                                         "energy_ledger",
                                          "mean_active_agents",
                                          "active_agents",
                                          "live_agents",

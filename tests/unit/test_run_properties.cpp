@@ -26,7 +26,14 @@ props::History cruising(int n = 100) {
                {"recording", {{"incomplete", nlohmann::json::object()}}},
                {"plant",
                 {{"agent_faults", {{"diagnoses", nlohmann::json::array()}}},
-                 {"group_wear", {{"L", {{"regressions", 0}}}, {"R", {{"regressions", 0}}}}}}}};
+                 {"group_wear", {{"L", {{"regressions", 0}}}, {"R", {{"regressions", 0}}}}},
+                 {"energy_ledger",
+                  {{"drawn_J", 1000.0},
+                   {"kinetic_start_J", 0.0},
+                   {"kinetic_end_J", 15.0},
+                   {"joule_loss_J", 885.0},
+                   {"mech_loss_J", 99.5},
+                   {"emf_loss_J", 0.5}}}}}};
   for (int k = 0; k < n; ++k) {
     TraceRow r;
     r.tick = k;
@@ -144,6 +151,27 @@ TEST(RunProperties, ALedgerThatWentBackwardsBreaksAtItsFirstRegression) {
   EXPECT_FALSE(v.holds);
   EXPECT_EQ(v.tick, 61);
   EXPECT_NE(v.reason.find("group-R"), std::string::npos);
+}
+
+TEST(RunProperties, EnergyBalanceHoldsWithinItsToleranceAndBreaksAtTheEndOutsideIt) {
+  auto h = cruising();
+  auto v = check("energy_balance", h);
+  EXPECT_TRUE(v.holds) << v.reason;
+  // 2 J of 1000 drawn went nowhere: 0.2 % apart.
+  h.summary["plant"]["energy_ledger"]["mech_loss_J"] = 97.5;
+  v = check("energy_balance", h);
+  EXPECT_FALSE(v.holds);
+  EXPECT_EQ(v.tick, 100);  // judged at the end of the run
+  EXPECT_NE(v.reason.find("0.2000 % apart"), std::string::npos) << v.reason;
+  EXPECT_TRUE(check("energy_balance:0.5", h).holds);
+  // Energy that comes from nowhere breaks it too.
+  h.summary["plant"]["energy_ledger"]["mech_loss_J"] = 101.5;
+  EXPECT_FALSE(check("energy_balance", h).holds);
+  // A run whose plant left no ledger cannot be said to balance.
+  h.summary["plant"].erase("energy_ledger");
+  v = check("energy_balance", h);
+  EXPECT_FALSE(v.holds);
+  EXPECT_NE(v.reason.find("no energy ledger"), std::string::npos) << v.reason;
 }
 
 TEST(RunProperties, ADeathNoFaultExplainsIsUnexpected) {
