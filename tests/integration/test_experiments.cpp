@@ -18,9 +18,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// Runs an experiment's quick variant. Every run it made that finished was checked against the
+/// experiment properties (energy_balance and no_false_detection; faults_detected:1 with
+/// detection on), and each held.
 CliResult run_experiment(const std::string& name, const std::string& out, double timeout_s) {
-  return run_cli({"experiment", name, "--quick", "--out", out, "--domain", std::to_string(private_domain())}, out,
-                 timeout_s);
+  auto r = run_cli({"experiment", name, "--quick", "--out", out, "--domain", std::to_string(private_domain())},
+                   out, timeout_s);
+  for (const auto& run : r.summary.value("runs", nlohmann::json::array())) {
+    if (run.value("status", "").rfind("aborted", 0) == 0) continue;
+    EXPECT_GE(run["properties"].size(), 2u) << run.dump();
+    for (const auto& v : run["properties"]) EXPECT_TRUE(v["holds"].get<bool>()) << name << " " << run["label"] << ": " << v.dump();
+  }
+  return r;
 }
 
 /// Runs the quick variant into r and checks that it finished, exited 0 and wrote two rows.

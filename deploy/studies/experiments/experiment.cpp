@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "deploy/fleet/isolated_launch.hpp"
+#include "deploy/fleet/run_history.hpp"
 #include "deploy/report/gnuplot.hpp"
 #include "records/run_files.hpp"
 
@@ -83,6 +84,7 @@ Run Experiment::run(const std::string& id, const std::string& label, config::Sce
     launch_with_retry(r, head);
   }
   derive(r);
+  check(r, head);
   const std::string st = r.status();
   if (r.aborted()) any_aborted_ = true;
   if (st.find("interrupted") != std::string::npos || stop_requested()) interrupted_ = true;
@@ -94,21 +96,61 @@ Run Experiment::run(const std::string& id, const std::string& label, config::Sce
   return r;
 }
 
+std::vector<properties::Spec> experiment_properties(const config::Scenario& s) {
+  std::vector<properties::Spec> specs = {properties::parse_spec("energy_balance"),
+                                         properties::parse_spec("no_false_detection")};
+  if (s.control.fault_detection && !s.faults.empty()) specs.push_back(properties::parse_spec("faults_detected:1"));
+  return specs;
+}
+
+void Experiment::check(Run& r, const std::string& head) {
+  if (r.aborted()) return;
+  properties::History h;
+  try {
+    h = properties::load_history(r.dir);
+  } catch (const std::exception& e) {
+    r.verdicts.push_back({"history", false, -1, -1, e.what()});
+  }
+  if (r.verdicts.empty())
+    for (const auto& spec : experiment_properties(r.s)) r.verdicts.push_back(properties::evaluate(spec, h));
+  for (const auto& v : r.verdicts) {
+    if (v.holds) continue;
+    any_broken_ = true;
+    std::fprintf(stderr, "maptr: %s %s %s: %s BROKE%s: %s\n", head.c_str(), o_.name.c_str(), r.label.c_str(),
+                 v.property.c_str(), v.tick >= 0 ? (" at tick " + std::to_string(v.tick)).c_str() : "",
+                 v.reason.c_str());
+  }
+}
+
+/// A run's verdicts in a cell: how many held, or the first that broke and why.
+static std::string verdicts_cell(const Run& r) {
+  if (r.verdicts.empty()) return "not checked";
+  for (const auto& v : r.verdicts)
+    if (!v.holds) return "**" + v.property + " broke**: " + v.reason;
+  std::string names;
+  for (const auto& v : r.verdicts) names += (names.empty() ? "" : ", ") + v.property;
+  return "hold: " + names;
+}
+
 std::string Experiment::runs_md() const {
   std::ostringstream md;
   md << "Runs (each a whole fleet of processes):\n\n"
-     << "| variant | status | simulated s | wall s | folder |\n|---|---|---|---|---|\n";
+     << "| variant | status | simulated s | wall s | properties (maptr check) | folder |\n|---|---|---|---|---|---|\n";
   for (const auto& r : runs_)
     md << "| " << r.label << " | " << r.status() << (r.reused ? " (reused)" : "")
        << (r.retried ? " (second attempt; the first: " + r.first_attempt + ")" : "") << " | "
        << fixed(r.summary.number_or(records::summary_key::kSimTime, 0), 1) << " | "
-       << fixed(r.summary.number_or(records::summary_key::kWallTime, 0), 0) << " | runs/" << r.id << " |\n";
+       << fixed(r.summary.number_or(records::summary_key::kWallTime, 0), 0) << " | " << verdicts_cell(r)
+       << " | runs/" << r.id << " |\n";
   return md.str();
 }
 
 json Experiment::runs_json() const {
   json runs = json::array();
-  for (const auto& r : runs_)
+  for (const auto& r : runs_) {
+    json verdicts = json::array();
+    for (const auto& v : r.verdicts)
+      verdicts.push_back({{"property", v.property}, {"holds", v.holds}, {"tick", v.tick}, {"reason", v.reason}});
     runs.push_back({{"id", r.id},
                     {"label", r.label},
                     {"folder", "runs/" + r.id},
@@ -117,7 +159,9 @@ json Experiment::runs_json() const {
                     {"retried", r.retried},
                     {"sim_time_s", r.summary.number_or(records::summary_key::kSimTime, 0)},
                     {"wall_time_s", r.summary.number_or(records::summary_key::kWallTime, 0)},
-                    {"real_time_factor", r.summary.number_or(records::summary_key::kRealTimeFactor, 0)}});
+                    {"real_time_factor", r.summary.number_or(records::summary_key::kRealTimeFactor, 0)},
+                    {"properties", verdicts}});
+  }
   return runs;
 }
 

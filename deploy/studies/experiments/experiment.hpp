@@ -56,20 +56,29 @@ class Experiment {
   const std::vector<std::string>& plots() const { return plots_; }
 
   std::string command() const;
-  int exit_code() const { return any_aborted_ ? 1 : 0; }
+  /// 1 when a run was aborted or broke one of the properties it was checked against.
+  int exit_code() const { return any_aborted_ || any_broken_ ? 1 : 0; }
 
  private:
   bool reusable(const Run& r, const config::Scenario& s) const;
   void launch_with_retry(Run& r, const std::string& head);
+  /// Checks a finished run against the properties every experiment run must satisfy
+  /// (experiment_properties()); a broken one is printed and fails the experiment.
+  void check(Run& r, const std::string& head);
   std::string runs_md() const;
   nlohmann::json runs_json() const;
 
   const ExperimentOptions& o_;
   int total_ = 0, done_ = 0;
-  bool interrupted_ = false, any_aborted_ = false;
+  bool interrupted_ = false, any_aborted_ = false, any_broken_ = false;
   std::vector<Run> runs_;
   std::vector<std::string> plots_;
 };
+
+/// The properties (maptr check) every run of an experiment must satisfy: its energy balances
+/// and no group isolates a healthy agent; with the groups' fault detection on, every fault the
+/// scenario injects is detected within a simulated second.
+std::vector<properties::Spec> experiment_properties(const config::Scenario& s);
 
 /// `plot` over series/<id>.csv files (pairs of id and title), y column `ycol` against t_s.
 std::string series_plot(const std::vector<std::pair<std::string, std::string>>& files_titles,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config/scenario.hpp"
+#include "deploy/fleet/run_properties.hpp"
 #include "plant_core/speed_band.hpp"
 #include "records/summary.hpp"
 
@@ -33,6 +34,8 @@ struct Run {
   std::string first_attempt;  ///< the status of a first attempt that was retried
   bool reused = false, retried = false;
   TraceFigures trace;
+  /// The properties every run of an experiment is checked against (Experiment::check).
+  std::vector<properties::Verdict> verdicts;
 
   std::string status() const;
   bool aborted() const;
