@@ -58,6 +58,10 @@ struct Shrinker {
       o.why = std::string("not a valid scenario: ") + e.what();  // e.g. a restart without its kill
       remember(k, o, sc);
       return o;
+    } catch (const model::ParamError& e) {
+      o.why = std::string("not a valid robot: ") + e.what();  // e.g. too few agents for the mass
+      remember(k, o, sc);
+      return o;
     }
     const std::string dir = out + "/fleet-" + std::to_string(fleets++);
     const auto summary = launch_isolated(LaunchOptions::of(sc, dir, bin, domain), dir + ".log");
@@ -87,8 +91,8 @@ struct Shrinker {
     steps.push_back({{"step", steps.size()}, {"candidate", k}, {"faults", sc.faults.size()},
                      {"duration_s", sc.duration_s}, {"agents", sc.robot.agents}, {"breaks", o.breaks},
                      {"why", o.why}, {"fleet", dir}, {"wall_s", wall}});
-    std::printf("shrink: step %3zu  %2zu faults  %6.1f s  %s  %s\n", steps.size() - 1, sc.faults.size(), sc.duration_s,
-                o.breaks ? "BREAKS" : "holds ", o.why.c_str());
+    std::printf("shrink: step %3zu  %2zu faults  %6.1f s  %3d agents  %s  %s\n", steps.size() - 1, sc.faults.size(),
+                sc.duration_s, sc.robot.agents, o.breaks ? "BREAKS" : "holds ", o.why.c_str());
     std::fflush(stdout);
     records::write_json_file(cache_path(), cache);
   }
@@ -153,6 +157,25 @@ void cut_duration(Shrinker& s, const std::vector<int>& kept, config::Scenario& b
   }
 }
 
+/// The fleet cut to the fewest agents that still break, smallest first (each fleet size from the
+/// fewest the faults allow up to one four below the scenario's).
+void cut_agents(Shrinker& s, const std::vector<int>& kept, config::Scenario& best, Outcome& best_outcome) {
+  std::vector<std::string> targets;
+  for (const auto& f : best.faults) targets.push_back(f.target);
+  for (int n = shrink::fewest_agents(targets); n < best.robot.agents; n += 4) {
+    config::Scenario smaller = best;
+    smaller.robot.agents = n;
+    const Outcome o = s.run(smaller, "faults:" + shrink::key(kept) + " duration:" + records::fixed(best.duration_s, 1) +
+                                         " agents:" + std::to_string(n));
+    if (stop_requested()) return;
+    if (o.breaks) {
+      best = smaller;
+      best_outcome = o;
+      return;
+    }
+  }
+}
+
 /// minimal.yaml and shrink.json, and the closing lines.
 void write_result(const Shrinker& s, const config::Scenario& best, const Outcome& best_outcome) {
   const int n = static_cast<int>(s.original.faults.size());
@@ -165,6 +188,8 @@ void write_result(const Shrinker& s, const config::Scenario& best, const Outcome
                                  {"faults_after", best.faults.size()},
                                  {"duration_before_s", s.original.duration_s},
                                  {"duration_after_s", best.duration_s},
+                                 {"agents_before", s.original.robot.agents},
+                                 {"agents_after", best.robot.agents},
                                  {"fleets_run", s.fleets},
                                  {"steps", s.steps},
                                  {"wall_s", wall},
@@ -172,8 +197,9 @@ void write_result(const Shrinker& s, const config::Scenario& best, const Outcome
                                  {"breaks", best_outcome.why},
                                  {"trace_sha256", best_outcome.sha}};
   records::write_json_file(s.out + "/shrink.json", report);
-  std::printf("shrink: %d -> %zu faults, %.1f -> %.1f s; %d fleets, %zu steps, %.0f s wall\n", n, best.faults.size(),
-              s.original.duration_s, best.duration_s, s.fleets, s.steps.size(), wall);
+  std::printf("shrink: %d -> %zu faults, %.1f -> %.1f s, %d -> %d agents; %d fleets, %zu steps, %.0f s wall\n", n,
+              best.faults.size(), s.original.duration_s, best.duration_s, s.original.robot.agents, best.robot.agents,
+              s.fleets, s.steps.size(), wall);
   for (const auto& f : best.faults) std::printf("shrink:   %s %s at %.2f s\n", f.action.c_str(), f.target.c_str(), f.at_s);
   std::printf("shrink: %s (maptr run %s breaks: %s)\n", minimal.c_str(), minimal.c_str(), best_outcome.why.c_str());
 }
@@ -208,6 +234,9 @@ int cmd_shrink(const ShrinkArgs& a, const std::string& bin_dir) {
   Outcome best_outcome = s.run(best, "faults:" + shrink::key(kept));
   // 2. The run's end.
   cut_duration(s, kept, best, best_outcome);
+  if (stop_requested()) return kExitInterrupted;
+  // 3. The fleet.
+  cut_agents(s, kept, best, best_outcome);
   if (stop_requested()) return kExitInterrupted;
   write_result(s, best, best_outcome);
   return kExitOk;

@@ -77,4 +77,14 @@ std::vector<int> ddmin(int n_parts, const Oracle& fails, const StepLog& log) {
   return parts;
 }
 
+int fewest_agents(const std::vector<std::string>& targets) {
+  int per_side = 2;
+  for (const auto& t : targets) {
+    const bool agent = t.size() >= 2 && (t[0] == 'L' || t[0] == 'R') &&
+                       std::all_of(t.begin() + 1, t.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (agent) per_side = std::max(per_side, std::stoi(t.substr(1)) + 1);
+  }
+  return (per_side + 1) / 2 * 4;
+}
+
 }  // namespace maptr::deploy::shrink

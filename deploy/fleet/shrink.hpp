@@ -17,6 +17,11 @@ using StepLog = std::function<void(const std::vector<int>& subset, bool failed)>
 /// caller has seen them fail). Each distinct subset is asked at most once.
 std::vector<int> ddmin(int n, const Oracle& fails, const StepLog& log = {});
 
+/// The fewest agents a fleet may have whose faults target these processes ("L3", "R1",
+/// "group-L", ...): every agent named stays (per side at least its index + 1, at least 2), and
+/// fleets come in fours.
+int fewest_agents(const std::vector<std::string>& targets);
+
 /// "0,3,7": a subset as a key (for a cache of outcomes).
 std::string key(const std::vector<int>& subset);
 

@@ -133,6 +133,8 @@ TEST(Check, ShrinkReducesAFailingRunToTheThreeKillsThatBreakIt) {
     EXPECT_NE(printed.find(kept), std::string::npos) << printed;
   const auto report = maptr::testing::read_json(shrunk + "/shrink.json");
   EXPECT_EQ(report["faults_after"], 3);
+  // Three kills of L1..L3 need four agents a side: the fleet stays at 8.
+  EXPECT_EQ(report["agents_after"], 8);
   EXPECT_GE(report["fleets_run"].get<int>(), 3);
   const CliResult min = run_cli({"run", shrunk + "/minimal.yaml", "--property", "max_dead_per_side:2", "--out", again,
                                  "--domain", std::to_string(private_domain())},

@@ -11,6 +11,7 @@ namespace {
 
 using maptr::deploy::shrink::ddmin;
 using maptr::deploy::shrink::key;
+namespace shrink = maptr::deploy::shrink;
 
 bool contains(const std::vector<int>& s, int x) { return std::find(s.begin(), s.end(), x) != s.end(); }
 
@@ -59,3 +60,12 @@ TEST(Shrink, ASinglePartAndACaseThatNeedsNone) {
 }
 
 }  // namespace
+
+TEST(Shrink, FewestAgentsKeepsEveryAgentAFaultNamesInFleetsOfFour) {
+  EXPECT_EQ(shrink::fewest_agents({}), 4);
+  EXPECT_EQ(shrink::fewest_agents({"central", "group-L"}), 4);
+  EXPECT_EQ(shrink::fewest_agents({"L1"}), 4);   // 2 per side
+  EXPECT_EQ(shrink::fewest_agents({"L2"}), 8);   // 3 per side: fours
+  EXPECT_EQ(shrink::fewest_agents({"L1", "R3"}), 8);
+  EXPECT_EQ(shrink::fewest_agents({"R12"}), 28);  // 13 per side -> 14
+}
