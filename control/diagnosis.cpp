@@ -133,11 +133,8 @@ std::vector<DiagnosisChange> SideDiagnosis::step(double t, const SideSample& s) 
   std::vector<double> steps;
   for (std::size_t j = 0; j < n; ++j)
     if (!flags_[j] && s.agents[j].drove && agents_[j].last_drove) steps.push_back(s.agents[j].drive_V - agents_[j].last_V);
-  // With two driving, the median is no reference (their steps apart are the same for both, and
-  // the upper of two would put all of it on the lower one): each is judged by its own step
-  // changes (median 0), where a healthy PID's smooth output shows none.
   double median = 0.0;
-  if (steps.size() >= 3) {
+  if (!steps.empty()) {
     std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
     median = steps[steps.size() / 2];
   }

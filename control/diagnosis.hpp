@@ -7,8 +7,7 @@
 //   B  reported current:  r_B = I_reported(t_{k-1}) - I_model(V_{k-1}, phidot_{k-1})
 //      (an agent reports the current its own voltage gives at the speed it read)
 //   C  erratic voltage:   c_k = (V_k - V_{k-1}) - median over the side's driving agents of the same,
-//      (0 with fewer than three driving), j_k = |c_k - c_{k-1}|; healthy agents share one speed
-//      error, so their PIDs step together
+//      j_k = |c_k - c_{k-1}|; healthy agents share one speed error, so their PIDs step together
 //      (a steady c, as a wrong sensor winds the integrator up, is not jitter)
 // |r_A| or |r_B| above fault_current_A on every tick of the persistence time, or the median of j
 // over it above fault_jitter_V, flags the agent with the fault it looks like:

@@ -199,18 +199,6 @@ TEST(Diagnosis, EachFaultIsFlaggedAfterThePersistenceTimeAsWhatItIs) {
   }
 }
 
-// With two agents driving, the side's median step is no reference: their steps apart are the
-// same for both. Each is then judged by its own step changes, so the healthy one is not
-// flagged for its erratic neighbour (diagnose() fails on any flag of an agent but 1).
-TEST(Diagnosis, AnErraticAgentOfTwoDrivingIsTheOneFlagged) {
-  for (const int driving : {2, 3, 4}) {
-    const auto [flag, k] = diagnose({{}, "erratic", 2.0}, driving);
-    EXPECT_EQ(flag, control::Diagnosis::kErratic) << driving << " driving";
-    EXPECT_LE(k, 100 + 20) << driving << " driving";
-  }
-  EXPECT_EQ(diagnose(Drive{}, 2).second, -1);
-}
-
 TEST(Diagnosis, ASingleOutlierIsNotAFault) {
   control::SideDiagnosis det(4, diag_config());
   for (long long k = 0; k < 100; ++k) {
