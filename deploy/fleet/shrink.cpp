@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 
+#include "config/scenario.hpp"
+
 namespace maptr::deploy::shrink {
 
 std::string key(const std::vector<int>& subset) {
@@ -80,9 +82,8 @@ std::vector<int> ddmin(int n_parts, const Oracle& fails, const StepLog& log) {
 int fewest_agents(const std::vector<std::string>& targets) {
   int per_side = 2;
   for (const auto& t : targets) {
-    const bool agent = t.size() >= 2 && (t[0] == 'L' || t[0] == 'R') &&
-                       std::all_of(t.begin() + 1, t.end(), [](char c) { return c >= '0' && c <= '9'; });
-    if (agent) per_side = std::max(per_side, std::stoi(t.substr(1)) + 1);
+    int side = 0, index = 0;
+    if (config::parse_agent_name(t, side, index)) per_side = std::max(per_side, index + 1);
   }
   return (per_side + 1) / 2 * 4;
 }

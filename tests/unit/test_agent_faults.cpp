@@ -114,15 +114,15 @@ control::DiagnosisConfig diag_config() {
   return c;
 }
 
-/// A side of 4 agents at a steady speed, the first `driving` of them driving at V (+ a slow drift
-/// common to all), the others idle; `fault` says what agent 1's drive really does.
+/// A side of 4 agents at a steady speed, each driving at V (+ a slow drift common to all);
+/// `fault` says what agent 1's drive really does.
 struct Drive {
   MotorFault fault;
   std::string software;  ///< "", "sensor", "erratic", "liar"
   double value = 0.0;
 };
 
-control::SideSample sample(long long k, const Drive& d, int driving = 4) {
+control::SideSample sample(long long k, const Drive& d) {
   const model::MotorParams m = motor();
   const model::DriverParams dr = bidirectional();
   control::SideSample s;
@@ -131,11 +131,6 @@ control::SideSample sample(long long k, const Drive& d, int driving = 4) {
   const double V = 3.0 + 0.002 * static_cast<double>(k);
   for (int j = 0; j < 4; ++j) {
     control::DriveSample a;
-    if (j >= driving) {  // idle: no voltage, no current, a report of none
-      a.reported = true;
-      s.agents.push_back(a);
-      continue;
-    }
     a.drove = true;
     a.drive_V = V;
     a.reported = true;
@@ -156,10 +151,10 @@ control::SideSample sample(long long k, const Drive& d, int driving = 4) {
 
 /// Ticks a detector through healthy ticks 0..99, then the drive from tick 100 on; returns the
 /// flag of agent 1 and the tick it was raised (-1: never) within 100 faulty ticks.
-std::pair<control::Diagnosis, long long> diagnose(const Drive& d, int driving = 4) {
+std::pair<control::Diagnosis, long long> diagnose(const Drive& d) {
   control::SideDiagnosis det(4, diag_config());
   for (long long k = 0; k < 200; ++k) {
-    const auto changes = det.step(static_cast<double>(k) * 0.01, sample(k, k < 100 ? Drive{} : d, driving));
+    const auto changes = det.step(static_cast<double>(k) * 0.01, sample(k, k < 100 ? Drive{} : d));
     for (const auto& c : changes) {
       EXPECT_EQ(c.index, 1) << "a healthy agent flagged at tick " << k;
       if (c.index == 1) return {c.flag, k};

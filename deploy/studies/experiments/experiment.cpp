@@ -105,14 +105,12 @@ std::vector<properties::Spec> experiment_properties(const config::Scenario& s) {
 
 void Experiment::check(Run& r, const std::string& head) {
   if (r.aborted()) return;
-  properties::History h;
   try {
-    h = properties::load_history(r.dir);
-  } catch (const std::exception& e) {
-    r.verdicts.push_back({"history", false, -1, -1, e.what()});
-  }
-  if (r.verdicts.empty())
+    const auto h = properties::load_history(r.dir);
     for (const auto& spec : experiment_properties(r.s)) r.verdicts.push_back(properties::evaluate(spec, h));
+  } catch (const std::exception& e) {  // a finished run without its history is no result either
+    r.verdicts = {{"history", false, -1, -1, e.what()}};
+  }
   for (const auto& v : r.verdicts) {
     if (v.holds) continue;
     any_broken_ = true;
