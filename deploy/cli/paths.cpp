@@ -3,8 +3,11 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <iostream>
+#include <stdexcept>
 
 #include "comm/posix/environment.hpp"
+#include "config/scenario.hpp"
 
 namespace maptr::deploy::cli {
 
@@ -34,6 +37,18 @@ int resolve_domain(int option) {
   if (option >= 0) return option;
   const char* env = std::getenv(comm::kEnvDomain);
   return env ? std::atoi(env) : 0;
+}
+
+bool input_read(const std::function<void()>& read) {
+  try {
+    read();
+    return true;
+  } catch (const config::ScenarioError& e) {
+    std::cerr << "maptr: " << e.what() << "\n";
+  } catch (const std::invalid_argument& e) {  // model::ParamError and the options' own
+    std::cerr << "maptr: " << e.what() << "\n";
+  }
+  return false;
 }
 
 }  // namespace maptr::deploy::cli

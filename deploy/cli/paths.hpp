@@ -1,6 +1,7 @@
 #pragma once
 // What every subcommand of the maptr CLI resolves the same way: the default scenario, the folder
 // of the executables, a fresh run folder and the DDS domain.
+#include <functional>
 #include <string>
 
 namespace maptr::deploy::cli {
@@ -22,5 +23,10 @@ std::string unique_run_dir(const std::string& base, const std::string& name);
 
 /// The DDS domain: `option` when given (>= 0), else $MAPTR_DOMAIN, else 0.
 int resolve_domain(int option);
+
+/// Runs `read`, a command's reading of its input; a bad scenario, robot or option it throws
+/// (config::ScenarioError, model::ParamError, std::invalid_argument) is printed as
+/// "maptr: <what>" and gives false.
+bool input_read(const std::function<void()>& read);
 
 }  // namespace maptr::deploy::cli

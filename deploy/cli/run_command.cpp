@@ -128,6 +128,25 @@ std::shared_ptr<spdlog::logger> launcher_log(const std::string& run_dir) {
   return log;
 }
 
+/// The fault schedule's options: processes, hosts and agents that run on.
+void add_fault_options(CLI::App* run, RunArgs& a) {
+  run->add_option("--kill", a.kills, "kill a process at a simulated time, e.g. L3@120 (repeatable)");
+  run->add_option("--restart", a.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
+  run->add_option("--pause", a.pauses,
+                  "stop a process (SIGSTOP) at a simulated time, e.g. L3@120 (repeatable)");
+  run->add_option("--resume", a.resumes, "continue a paused process (SIGCONT), e.g. L3@130 (repeatable)");
+  run->add_option(
+      "--chaos", a.chaos,
+      "random kills and restarts, pauses and resumes of agents and controllers, and one agent fault (cleared 2-8 s later), reproducible from SEED");
+  run->add_option("--kill-host", a.kill_hosts, "kill every process of a host and cut its link, e.g. h2@20");
+  run->add_option("--partition", a.partitions, "cut a host's link at a simulated time, e.g. h2@20");
+  run->add_option("--heal", a.heals, "link a cut host again, e.g. h2@30");
+  run->add_option("--fault", a.agent_faults,
+                  "break an agent that runs on, e.g. L3:open@20, L3:torque=0.5@20, L3:stuck=12@20, "
+                  "R1:sensor=5@30, R1:erratic=2@30, L0:liar@10 (repeatable; docs/ARCHITECTURE.md \"Fault detection\")");
+  run->add_option("--clear", a.clears, "end an agent's fault, e.g. L3@40 (repeatable)");
+}
+
 }  // namespace
 
 CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
@@ -151,14 +170,6 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_option("--trace-every", a.trace_every, "write every n-th tick to trace.csv");
   run->add_option("--tick-hz", a.tick_hz,
                   "Level-1 control and plant tick rate, Hz (default: the scenario's, 100)");
-  run->add_option("--kill", a.kills, "kill a process at a simulated time, e.g. L3@120 (repeatable)");
-  run->add_option("--restart", a.restarts, "restart a killed process, e.g. L3@300 (repeatable)");
-  run->add_option("--pause", a.pauses,
-                  "stop a process (SIGSTOP) at a simulated time, e.g. L3@120 (repeatable)");
-  run->add_option("--resume", a.resumes, "continue a paused process (SIGCONT), e.g. L3@130 (repeatable)");
-  run->add_option(
-      "--chaos", a.chaos,
-      "random kills and restarts, pauses and resumes of agents and controllers, and one agent fault (cleared 2-8 s later), reproducible from SEED");
   run->add_option("--external", a.external, "an agent you start yourself (the launcher prints the command)");
   run->add_option("--transport", a.transport, "data transport: shm, shm+udp (data on both), udp or auto (shm on one host; data on shm+udp across hosts or with --secure)")
       ->check(CLI::IsMember({"auto", "shm", "shm+udp", "udp"}));
@@ -178,17 +189,11 @@ CLI::App* add_run_command(CLI::App& app, RunArgs& a) {
   run->add_flag("--ssh", a.ssh,
                 "with --hosts: an ssh server in each namespace host and every process started over ssh (the "
                 "rehearsal of real machines; needs openssh-server)");
-  run->add_option("--kill-host", a.kill_hosts, "kill every process of a host and cut its link, e.g. h2@20");
-  run->add_option("--partition", a.partitions, "cut a host's link at a simulated time, e.g. h2@20");
-  run->add_option("--heal", a.heals, "link a cut host again, e.g. h2@30");
-  run->add_option("--fault", a.agent_faults,
-                  "break an agent that runs on, e.g. L3:open@20, L3:torque=0.5@20, L3:stuck=12@20, "
-                  "R1:sensor=5@30, R1:erratic=2@30, L0:liar@10 (repeatable; docs/ARCHITECTURE.md \"Fault detection\")");
-  run->add_option("--clear", a.clears, "end an agent's fault, e.g. L3@40 (repeatable)");
   run->add_option("--stall-timeout", a.stall_timeout_s,
                   "end the run as stalled after this many wall seconds without a tick (default 180)")
       ->check(CLI::Range(1.0, 86400.0));
   run->add_flag("--quiet", a.quiet, "no progress lines");
+  add_fault_options(run, a);
   return run;
 }
 
@@ -261,19 +266,11 @@ static int check_properties(const std::string& run_dir, const std::vector<proper
 int cmd_run(const RunArgs& a, const std::string& bin_dir) {
   LaunchOptions o;
   std::vector<properties::Spec> specs;
-  try {
+  const bool read = input_read([&] {
     specs = property_specs(a.properties);
     o.scenario = checked_scenario(a);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const ScenarioError& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const model::ParamError& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  });
+  if (!read) return kExitBadInput;
   o.run_dir = a.out.empty() ? unique_run_dir("runs", o.scenario.name) : a.out;
   o.bin_dir = bin_dir;
   o.progress = !a.quiet;

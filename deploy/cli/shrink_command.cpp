@@ -120,20 +120,12 @@ namespace {
 /// The properties, the scenario and the folder, checked; false (after saying why) on bad input.
 bool set_up(Shrinker& s) {
   const ShrinkArgs& a = s.a;
-  try {
+  const bool read = input_read([&] {
     s.specs = property_specs(a.properties);
     s.original = config::load_scenario(a.scenario);
     s.original.validate();
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return false;
-  } catch (const config::ScenarioError& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return false;
-  } catch (const model::ParamError& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return false;
-  }
+  });
+  if (!read) return false;
   s.domain = resolve_domain(a.domain);
   s.out = a.out.empty() ? unique_run_dir("runs", "shrink-" + s.original.name) : a.out;
   fs::create_directories(s.out);
@@ -206,7 +198,7 @@ void write_result(const Shrinker& s, const config::Scenario& best, const Outcome
 }  // namespace
 
 int cmd_shrink(const ShrinkArgs& a, const std::string& bin_dir) {
-  Shrinker s{a, bin_dir};
+  Shrinker s{a, bin_dir, {}, 0, {}, {}};
   if (!set_up(s)) return kExitBadInput;
   install_stop_handler();
   const int n = static_cast<int>(s.original.faults.size());

@@ -192,8 +192,9 @@ std::string fleet_repro(const std::string& dir, const std::vector<std::pair<std:
   return write_repro(dir, lines, summary.value("trace_sha256", ""), dir + ".yaml");
 }
 
-/// One fleet's checks, printed and recorded; true when all of them passed.
-bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, const ShmCount& before) {
+/// The soak's own checks of one fleet (run, processes, shared memory, wear, band, detection): (check, why).
+std::vector<std::pair<std::string, std::string>> soak_checks(const Soak& s, const FleetRun& r,
+                                                             const std::string& dir, const ShmCount& before) {
   std::vector<std::pair<std::string, std::string>> failed;  // (check, why)
   if (r.timed_out) failed.push_back({"timeout", "still running after the fleet timeout"});
   if (r.killed)
@@ -207,6 +208,12 @@ bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, 
     failed.push_back({"wear", why});
   for (const auto& why : soak::check_band(r.summary, s.reference, s.band)) failed.push_back({"band", why});
   for (const auto& why : soak::check_detection(r.summary)) failed.push_back({"detection", why});
+  return failed;
+}
+
+/// One fleet's checks, printed and recorded; true when all of them passed.
+bool check_fleet(Soak& s, int index, const FleetRun& r, const std::string& dir, const ShmCount& before) {
+  auto failed = soak_checks(s, r, dir, before);
   const nlohmann::json verdicts = check_properties(s, dir, failed);
   const auto kinds = soak::faults_by_kind(r.summary);
   for (const auto& [k, v] : kinds) s.totals.faults[k] += v;
@@ -326,15 +333,7 @@ void set_up(Soak& s) {
 
 int cmd_soak(const SoakArgs& a, const std::string& bin_dir) {
   Soak s{a, bin_dir};
-  try {
-    set_up(s);
-  } catch (const config::ScenarioError& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const model::ParamError& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!input_read([&] { set_up(s); })) return kExitBadInput;
   std::signal(SIGINT, on_interrupt);  // the fleet's launcher gets it too and ends its run
   std::signal(SIGTERM, on_interrupt);
   std::printf("soak: folder %s, domain %d; the fault-free run first\n", s.out.c_str(), s.domain);

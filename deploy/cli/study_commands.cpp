@@ -94,16 +94,11 @@ int cmd_compare(CompareArgs a, const std::string& bin_dir) {
   a.c.o.source_dir = source_dir();
   a.c.o.domain = resolve_domain(a.domain);
   std::vector<CompareVariant> variants;
-  try {
+  const bool read = input_read([&] {
     variants = compare_variants(a.c);  // bad input: exit 2 before anything starts
     if (a.c.o.out.empty()) a.c.o.out = unique_run_dir("runs", "compare-" + variants.front().s.name);
-  } catch (const config::ScenarioError& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return 2;
-  } catch (const model::ParamError& e) {
-    std::cerr << "maptr: " << e.what() << "\n";
-    return 2;
-  }
+  });
+  if (!read) return 2;
   std::string cmd = "maptr compare " + a.c.scenario;
   for (const auto& s : a.c.sets) cmd += " --set " + s;
   if (!a.c.duration.empty()) cmd += " --duration " + a.c.duration;
