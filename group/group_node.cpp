@@ -80,6 +80,7 @@ int GroupNode::run() {
     if (d.level2_ran && l2) l2->write(d.level2);
     msg::GroupStatus st = group_status(t, side_, in, d, core_.ledger());
     st.rejected(follower.rejected());
+    st.level2_solving(worker_.solving());  // timing only: what the plant's slowest ticks overlapped
     follower.answer(st);
   });
   log_->info(

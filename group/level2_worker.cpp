@@ -1,5 +1,7 @@
 #include "group/level2_worker.hpp"
 
+#include "comm/posix/thread_name.hpp"
+
 namespace maptr::group {
 
 Level2Worker::Level2Worker(bool oracle, std::chrono::milliseconds pause)
@@ -20,6 +22,7 @@ void Level2Worker::start(const control::Level2Problem& p) {
     problem_ = p;
     has_job_ = true;
     done_ = false;
+    solving_ = true;
   }
   cv_.notify_all();
 }
@@ -33,7 +36,13 @@ control::Level2Outcome Level2Worker::finish() {
   return outcome_;
 }
 
+bool Level2Worker::solving() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return solving_;
+}
+
 void Level2Worker::loop() {
+  comm::name_this_thread("level2");
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
     cv_.wait(lock, [this] { return has_job_ || quit_; });
@@ -46,6 +55,7 @@ void Level2Worker::loop() {
     lock.lock();
     outcome_ = o;
     done_ = true;
+    solving_ = false;
     cv_.notify_all();
   }
 }

@@ -27,6 +27,8 @@ class Level2Worker : public control::Level2Runner {
   /// Decisions finish() had to wait for, and all decisions finished so far.
   uint64_t waited() const { return waited_; }
   uint64_t finished() const { return finished_; }
+  /// A solve is under way: started and not yet done (what the group's status tells the plant).
+  bool solving();
 
  private:
   void loop();
@@ -38,7 +40,7 @@ class Level2Worker : public control::Level2Runner {
   std::condition_variable cv_;
   control::Level2Problem problem_;
   control::Level2Outcome outcome_;
-  bool has_job_ = false, done_ = false, quit_ = false;
+  bool has_job_ = false, done_ = false, quit_ = false, solving_ = false;
   uint64_t waited_ = 0, finished_ = 0;
   std::thread thread_;  // last: started once everything above exists
 };

@@ -94,6 +94,7 @@ void PlantLoop::take_replies(long long k, const SampleLimits& lim) {
               k))
       continue;
     if (times_.first_reply == Clock::time_point{}) times_.first_reply = Clock::now();
+    times_.note.last = TickNote::kAgent;
     ++taken_[0];
     membership_.on_answer({Role::kAgent, static_cast<int>(r.side()), r.index()}, writer_id(h));
     cmd_.applied[r.side()][r.index()] = {true, drives(r), r.voltage_V(), r.current_A(), r.efficiency()};
@@ -111,6 +112,8 @@ void PlantLoop::take_groups(long long k, const SampleLimits& lim) {
     if (!one_writer({Role::kGroup, s, 0}, h, k)) continue;
     if (!once(once_group_[s].see(g, k), "group status", s, 0, k)) continue;
     ++taken_[1];
+    times_.note.last = TickNote::kGroup;
+    times_.note.level2_solving = times_.note.level2_solving || g.level2_solving();
     membership_.on_answer({Role::kGroup, s, 0}, writer_id(h));
     cmd_.mask[s] = g.active();
     for (int j = 0; j < per_side_; ++j)
@@ -137,6 +140,7 @@ void PlantLoop::take_centrals(long long k, const SampleLimits& lim) {
     if (!one_writer({Role::kCentral, 0, 0}, h, k)) continue;
     if (!once(once_central_.see(c, k), "central command", 0, 0, k)) continue;
     ++taken_[2];
+    times_.note.last = TickNote::kCentral;
     membership_.on_answer({Role::kCentral, 0, 0}, writer_id(h));
     for (int s = 0; s < 2; ++s) {
       cmd_.ref[s] = c.phidot_ref()[s];
@@ -157,6 +161,8 @@ bool PlantLoop::collect() {
     for (auto& a : side) a = plant_core::AgentApplied{};
   times_.start = Clock::now();
   times_.first_reply = Clock::time_point{};
+  times_.note = TickNote{};
+  times_.note.tick = k;
   barrier_.start(now_s());
   const SampleLimits lim = limits();
   for (;;) {
@@ -210,14 +216,16 @@ void PlantLoop::integrate() {
     for (int j = 0; j < per_side_; ++j)
       cmd_.applied[s][static_cast<std::size_t>(j)].disconnected = core_.faults().disconnected(s, j);
   // Row k is written before the integration, so that a run whose integration fails keeps it.
-  files_->write(core_.hold(cmd_.applied[0], cmd_.applied[1], cmd_.ref[0], cmd_.ref[1],
-                           membership_.live_count(0), membership_.live_count(1)));
+  const plant_core::TickRecord rec = core_.hold(cmd_.applied[0], cmd_.applied[1], cmd_.ref[0], cmd_.ref[1],
+                                                membership_.live_count(0), membership_.live_count(1));
+  files_->write(rec);
+  times_.note.traced = rec.row.has_value();
   core_.integrate();
   times_.done = Clock::now();
   const auto& t = times_;
   const float first = t.first_reply != Clock::time_point{} ? us(t.start, t.first_reply) : -1.0f;
   timing_.add(us(t.publish, t.start), first, us(t.start, t.complete), us(t.complete, t.done),
-              us(t.publish, t.done));
+              us(t.publish, t.done), t.note);
 }
 
 void PlantLoop::pace() {

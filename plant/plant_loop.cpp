@@ -169,6 +169,8 @@ void PlantLoop::wait_gate(long long k) {
 
 void PlantLoop::publish(msg::RunState run_state) {
   times_.publish = Clock::now();
+  if (last_publish_ != Clock::time_point{}) timing_.add_period(us(last_publish_, times_.publish));
+  last_publish_ = times_.publish;
   msg::PlantTick& t = sent_;
   t.tick(static_cast<uint64_t>(core_.tick()));
   t.t(core_.t());

@@ -59,6 +59,7 @@ struct Commands {
 /// Wall-clock instants of one lock-step tick.
 struct TickTimes {
   Clock::time_point publish, start, first_reply, complete, done;
+  TickNote note;  ///< reset when the barrier starts
 };
 
 /// The plant's DDS endpoints and the protocol objects they feed.
@@ -155,6 +156,7 @@ class PlantLoop {
   }
   TickTimes times_;
   TickTiming timing_;
+  Clock::time_point last_publish_{};  ///< of the tick before (the period between two publishes)
   Clock::time_point wall0_;
   std::string end_reason_ = "duration reached";
   uint64_t rejected_ = 0, missed_deadlines_ = 0, declared_dead_ = 0;

@@ -8,27 +8,82 @@
 namespace maptr::plant {
 
 void TickTiming::add(float publish_us, float first_reply_us, float barrier_us, float integrate_us,
-                     float tick_us) {
+                     float tick_us, TickNote note) {
   publish_.push_back(publish_us);
   if (first_reply_us >= 0.0f) first_reply_.push_back(first_reply_us);
   barrier_.push_back(barrier_us);
   integrate_.push_back(integrate_us);
   tick_.push_back(tick_us);
+  notes_.push_back(note);
 }
 
 nlohmann::json quantiles(std::vector<float> v) {
   if (v.empty()) return nlohmann::json::object();
   std::sort(v.begin(), v.end());
   auto q = [&](double p) { return v[static_cast<std::size_t>(p * (v.size() - 1))]; };
-  return nlohmann::json{{"median", q(0.5)}, {"p90", q(0.9)}, {"p99", q(0.99)}, {"n", v.size()}};
+  double sum = 0.0;
+  for (float x : v) sum += x;
+  return nlohmann::json{{"median", q(0.5)}, {"mean", sum / static_cast<double>(v.size())},
+                        {"p90", q(0.9)},    {"p99", q(0.99)},
+                        {"max", v.back()},  {"n", v.size()}};
+}
+
+nlohmann::json TickTiming::slowest() const {
+  if (tick_.empty()) return nlohmann::json::object();
+  // The slowest 1 % by rank (at least one tick), ties broken by order: exactly that many ticks.
+  std::vector<std::size_t> order(tick_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const std::size_t n_slow = std::max<std::size_t>(1, tick_.size() / 100);
+  const std::size_t n_sorted = std::min(tick_.size(), std::max<std::size_t>(n_slow, 5));
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n_sorted), order.end(),
+                    [&](std::size_t a, std::size_t b) { return tick_[a] > tick_[b] || (tick_[a] == tick_[b] && a < b); });
+  std::vector<bool> slow_tick(tick_.size(), false);
+  for (std::size_t i = 0; i < n_slow; ++i) slow_tick[order[i]] = true;
+  const float threshold = tick_[order[n_slow - 1]];
+  struct Count {
+    double n = 0, agent = 0, group = 0, central = 0, none = 0, traced = 0, level2 = 0;
+    void add(const TickNote& t) {
+      ++n;
+      (t.last == TickNote::kAgent ? agent : t.last == TickNote::kGroup ? group : t.last == TickNote::kCentral ? central : none) += 1;
+      traced += t.traced;
+      level2 += t.level2_solving;
+    }
+    nlohmann::json pct() const {
+      const auto p = [&](double x) { return n > 0 ? 100.0 * x / n : 0.0; };
+      return {{"last_agent_pct", p(agent)}, {"last_group_pct", p(group)}, {"last_central_pct", p(central)},
+              {"last_none_pct", p(none)},   {"traced_pct", p(traced)},    {"level2_solving_pct", p(level2)}};
+    }
+  } slow, all;
+  for (std::size_t i = 0; i < tick_.size(); ++i) {
+    all.add(notes_[i]);
+    if (slow_tick[i]) slow.add(notes_[i]);
+  }
+  return {{"threshold_us", threshold}, {"n", slow.n}, {"slowest", slow.pct()}, {"all", all.pct()},
+          {"ticks", five_slowest(order)}};
+}
+
+nlohmann::json TickTiming::five_slowest(const std::vector<std::size_t>& order) const {
+  constexpr std::size_t kListed = 5;
+  nlohmann::json out = nlohmann::json::array();
+  // publish_, barrier_ and integrate_ have one entry per tick_ (first_reply_ does not).
+  for (std::size_t r = 0; r < std::min(kListed, order.size()); ++r) {
+    const std::size_t i = order[r];
+    const std::pair<const char*, float> parts[] = {
+        {"publish", publish_[i]}, {"barrier", barrier_[i]}, {"integrate", integrate_[i]}};
+    const auto* longest = &parts[0];
+    for (const auto& p : parts)
+      if (p.second > longest->second) longest = &p;
+    out.push_back({{"tick", notes_[i].tick}, {"us", tick_[i]}, {"longest_part", longest->first},
+                   {"longest_part_us", longest->second}});
+  }
+  return out;
 }
 
 nlohmann::json TickTiming::json() const {
-  return {{"publish", quantiles(publish_)},
-          {"first_reply", quantiles(first_reply_)},
-          {"barrier", quantiles(barrier_)},
-          {"integrate", quantiles(integrate_)},
-          {"tick", quantiles(tick_)}};
+  return {{"publish", quantiles(publish_)},     {"first_reply", quantiles(first_reply_)},
+          {"barrier", quantiles(barrier_)},     {"integrate", quantiles(integrate_)},
+          {"tick", quantiles(tick_)},           {"period", quantiles(period_)},
+          {"slowest_1pct", slowest()}};
 }
 
 std::string run_status(const RunEnd& e, double degraded_band_pct) {

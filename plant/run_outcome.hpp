@@ -12,21 +12,41 @@
 
 namespace maptr::plant {
 
+/// What a tick's wall time may owe to: which kind of process answered last, whether the plant
+/// wrote a trace row, whether a group's Level-2 solve was under way when it answered.
+struct TickNote {
+  enum Last : int8_t { kNone = -1, kAgent = 0, kGroup = 1, kCentral = 2 };
+  long long tick = -1;        ///< k
+  int8_t last = kNone;        ///< the kind of the last answer the barrier took
+  bool traced = false;        ///< the tick's trace row was written
+  bool level2_solving = false;
+};
+
 /// Wall-clock cost of each lock-step tick, µs: publishing, the first reply, the whole barrier,
-/// the integration and the tick from publish to integrated.
+/// the integration, the tick from publish to integrated, and the period from one publish to the
+/// next (what a tick costs the run's wall time: the real-time factor is 1 / mean period at the
+/// tick's step). The slowest 1 % of the ticks (by `tick`) are told apart by their TickNote.
 class TickTiming {
  public:
   /// first_reply_us < 0: no reply came in during the tick.
-  void add(float publish_us, float first_reply_us, float barrier_us, float integrate_us, float tick_us);
-  /// {"publish", "first_reply", "barrier", "integrate", "tick"}: each {median, p90, p99, n}, or
-  /// an empty object when nothing was measured.
+  void add(float publish_us, float first_reply_us, float barrier_us, float integrate_us, float tick_us,
+           TickNote note);
+  void add_period(float period_us) { period_.push_back(period_us); }
+  /// {"publish", "first_reply", "barrier", "integrate", "tick", "period"}: each {median, mean, p90,
+  /// p99, max, n}, or an empty object when nothing was measured; "slowest_1pct": what the
+  /// slowest 1 % of the ticks have in common, each share beside the same share over all ticks,
+  /// and the five slowest ticks (k, µs and the part that took longest).
   nlohmann::json json() const;
 
  private:
-  std::vector<float> publish_, first_reply_, barrier_, integrate_, tick_;
+  nlohmann::json slowest() const;
+  std::vector<float> publish_, first_reply_, barrier_, integrate_, tick_, period_;
+  std::vector<TickNote> notes_;  ///< one per tick_
+  /// The five slowest ticks, slowest first: index into tick_ (and the other parts).
+  nlohmann::json five_slowest(const std::vector<std::size_t>& order) const;
 };
 
-/// Median, p90, p99 (nearest rank below) and n of a series; an empty object when empty.
+/// Median, mean, p90, p99 (nearest rank below), max and n of a series; an empty object when empty.
 nlohmann::json quantiles(std::vector<float> v);
 
 /// How the run ended, as the node saw it.

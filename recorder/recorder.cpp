@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "comm/dds/fleet_guid.hpp"
+#include "comm/posix/thread_name.hpp"
 #include "idl/idl_text.hpp"
 
 namespace maptr::recorder {
@@ -169,6 +170,7 @@ void Recorder::push(uint16_t topic, const eprosima::fastrtps::rtps::InstanceHand
 }
 
 void Recorder::write_loop() {
+  comm::name_this_thread("recorder");
   std::unique_lock<std::mutex> lk(m_);
   for (;;) {
     cv_.wait_for(lk, kWritePeriod, [this] { return stopping_ || queue_.size() >= kWakeBatch; });

@@ -174,6 +174,25 @@ std::vector<ResultColumn> bench_floor() {
           {"cs_per_round", "cs / round", 1}};
 }
 
+namespace {
+
+/// What the slowest 1 % of a fleet's ticks had in common, beside all its ticks.
+std::vector<ResultColumn> bench_slowest_ticks() {
+  std::vector<ResultColumn> cols;
+  const std::pair<const char*, const char*> shares[] = {{"last_agent_pct", "last answer an agent's %"},
+                                                        {"last_group_pct", "last answer a group's %"},
+                                                        {"last_central_pct", "last answer central's %"},
+                                                        {"level2_solving_pct", "Level-2 solve under way %"},
+                                                        {"traced_pct", "trace row written %"}};
+  for (const auto& [key, what] : shares) {
+    cols.push_back({std::string("slow_") + key, std::string("slowest 1 %: ") + what, 1});
+    cols.push_back({std::string("all_") + key, std::string("all ticks: ") + what, 1});
+  }
+  return cols;
+}
+
+}  // namespace
+
 std::vector<ResultColumn> bench_scale() {
   std::vector<ResultColumn> cols = {{"agents", "N", 0},
                                     {"mode", "mode", -1},
@@ -197,11 +216,26 @@ std::vector<ResultColumn> bench_scale() {
                                     {"tick_median_ms", "tick median ms", 2, true, false},
                                     {"tick_p99_us", "", 0, false, true},
                                     {"tick_p99_ms", "tick p99 ms", 2, true, false},
+                                    {"tick_mean_us", "tick mean µs", 0},
+                                    {"tick_p90_us", "tick p90 µs", 0},
+                                    {"tick_max_us", "tick max µs", 0},
+                                    {"period_median_us", "period median µs", 0},
+                                    {"period_mean_us", "period mean µs", 0},
+                                    {"mean_over_median", "period mean / median", 2},
                                     {"floor_median_us", "floor median µs", 0},
                                     {"x_floor", "tick / floor", 1},
+                                    {"dds_floor_median_us", "DDS floor median µs", 0},
+                                    {"dds_floor_mean_us", "DDS floor mean µs", 0},
+                                    {"x_dds_floor", "tick / DDS floor", 2},
+                                    {"dds_floor_cpu_us_per_round", "DDS floor CPU µs / round", 0},
+                                    {"dds_floor_resent", "DDS floor ticks resent", 0},
+                                    {"dds_floor_first_round_us", "DDS floor first round µs", 0},
+                                    {"first_tick_us", "fleet's tick 0 µs (0: not among the 5 slowest)", 0},
+                                    {"dds_floor_problem", "DDS floor not measured: why", -1},
                                     {"floor_cs_per_round", "floor cs / round", 1},
                                     {"floor_cpu_us_per_round", "floor CPU µs / round", 0}};
   for (const auto& c : bench_fleet_cost()) cols.push_back(c);
+  for (const auto& c : bench_slowest_ticks()) cols.push_back(c);
   // last: earlier columns keep their places
   cols.push_back({"record", "run.mcap records", -1});
   cols.push_back({"realtime", "paced to the wall clock", -1});
@@ -225,7 +259,18 @@ std::vector<ResultColumn> bench_fleet_cost() {
           {"cpu_us_tick_agents", "CPU µs / tick agents (all)", 0},
           {"cpu_us_tick_group", "CPU µs / tick group (mean)", 0},
           {"cpu_us_tick_central", "CPU µs / tick central", 0},
-          {"cpu_us_tick_ds", "CPU µs / tick discovery server", 1}};
+          {"cpu_us_tick_ds", "CPU µs / tick discovery server", 1},
+          {"cs_tick_launcher", "cs / tick launcher", 1},
+          {"cpu_us_tick_groups", "CPU µs / tick groups (all)", 0},
+          {"cpu_us_tick_launcher", "CPU µs / tick launcher (with recorder)", 0},
+          {"cpu_us_tick_tick_path", "CPU µs / tick: lock-step main threads", 0},
+          {"cpu_us_tick_level2", "CPU µs / tick: Level-2 threads", 0},
+          {"cpu_us_tick_recorder", "CPU µs / tick: recorder thread", 0},
+          {"cpu_us_tick_other_threads", "CPU µs / tick: other threads (Fast DDS, logs, launcher, server)", 0},
+          {"cpu_us_tick_processes", "CPU µs / tick: all processes", 0},
+          {"cpu_us_tick_watch", "CPU µs / tick: the bench's watch", 0},
+          {"cpu_us_tick_machine", "CPU µs / tick: the machine (/proc/stat)", 0},
+          {"cpu_accounted_pct", "accounted % of the machine", 1}};
 }
 
 }  // namespace maptr::records::columns

@@ -101,7 +101,9 @@ const json& Summary::tick_timing_json() const {
 TickTiming Summary::tick_timing(const std::string& part) const {
   const json& t = tick_timing_json();
   if (!t.contains(part)) return {};
-  return {true, t[part].value("median", 0.0), t[part].value("p90", 0.0), t[part].value("p99", 0.0)};
+  const json& q = t[part];
+  return {true, q.value("median", 0.0), q.value("p90", 0.0), q.value("p99", 0.0), q.value("mean", 0.0),
+          q.value("max", 0.0)};
 }
 
 }  // namespace maptr::records

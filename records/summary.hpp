@@ -51,6 +51,7 @@ struct Level2Figures {
 struct TickTiming {
   bool present = false;
   double median = 0, p90 = 0, p99 = 0;
+  double mean = 0, max = 0;
 };
 
 /// One injected failure as the launcher saw it (NaN: did not happen / not measured).

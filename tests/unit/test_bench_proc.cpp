@@ -3,7 +3,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <pthread.h>
+
+#include <atomic>
+#include <chrono>
 #include <fstream>
+#include <thread>
 #include <sstream>
 
 #include "deploy/studies/bench/fleet_cost.hpp"
@@ -62,6 +67,32 @@ TEST(BenchProc, StealPercentIsItsShareOfAllCpuTimeBetweenTwoReads) {
   EXPECT_GE(now->steal, 0);
 }
 
+TEST(BenchProc, SchedstatGivesTheNanosecondsOnTheCpuAndAThreadNamedByTheProjectIsToldApart) {
+  EXPECT_EQ(parse_schedstat_ns("11056525 10803818 8\n"), 11056525);
+  EXPECT_FALSE(parse_schedstat_ns(""));
+  EXPECT_FALSE(parse_schedstat_ns("-5 1 1\n"));
+  // A thread of this process named "level2" that spins for a while: its CPU is listed by name,
+  // apart from the main thread's.
+  std::atomic<bool> named{false}, stop{false};
+  std::thread t([&] {
+    pthread_setname_np(pthread_self(), "level2");
+    named = true;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
+    while (std::chrono::steady_clock::now() < end) {
+    }
+    while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  });
+  while (!named) std::this_thread::yield();
+  std::this_thread::sleep_for(std::chrono::milliseconds(60));
+  const auto c = read_proc_counters(getpid());
+  stop = true;
+  t.join();
+  ASSERT_TRUE(c);
+  ASSERT_TRUE(c->named_cpu_s.count("level2"));
+  EXPECT_GT(c->named_cpu_s.at("level2"), 0.0);
+  EXPECT_GE(c->cpu_s + 1e-9, c->main_cpu_s + c->named_cpu_s.at("level2"));
+}
+
 TEST(BenchProc, ALiveProcessIsReadAndAnEndedOneIsNot) {
   const auto self = read_proc_counters(getpid());
   ASSERT_TRUE(self);
@@ -83,14 +114,31 @@ TEST(BenchProc, CostPerTickByKindOverTheWindow) {
   ASSERT_EQ(procs.size(), 7u);
   EXPECT_EQ(procs.back().kind, ProcKind::kDiscovery);
   EXPECT_EQ(procs[2].kind, ProcKind::kGroup);
+  nlohmann::json with_launcher = fleet;
+  with_launcher["launcher_pid"] = 9;  // the launcher (and its recorder) counts when the file names it
+  const auto all = fleet_processes(with_launcher);
+  ASSERT_EQ(all.size(), 8u);
+  EXPECT_EQ(all.back().kind, ProcKind::kLauncher);
+  EXPECT_EQ(all.back().pid, 9);
   FleetSample a, b;
   a.tick = 100;
   b.tick = 300;  // 200 ticks
   for (std::size_t i = 0; i < procs.size(); ++i) {
-    a.procs.push_back(ProcCounters{1.0, 1000});
-    // Process i used 0.002 (i + 1) s and 400 (i + 1) switches over the window.
-    b.procs.push_back(ProcCounters{1.0 + 0.002 * (i + 1), 1000 + 400 * static_cast<long long>(i + 1)});
+    ProcCounters start, end;
+    start.cpu_s = 1.0;
+    start.ctx_switches = 1000;
+    // Process i used 0.002 (i + 1) s and 400 (i + 1) switches over the window, half of its CPU
+    // in its main thread; the groups 0.001 s of it in their "level2" thread.
+    end.cpu_s = 1.0 + 0.002 * (i + 1);
+    end.ctx_switches = 1000 + 400 * static_cast<long long>(i + 1);
+    end.main_cpu_s = 0.001 * (i + 1);
+    if (procs[i].kind == ProcKind::kGroup) end.named_cpu_s["level2"] = 0.001;
+    a.procs.push_back(start);
+    b.procs.push_back(end);
   }
+  a.machine = MachineCpu{0, 0, 0};
+  b.machine = MachineCpu{0, 0, 0};
+  b.machine->busy = static_cast<long long>(0.2 * static_cast<double>(sysconf(_SC_CLK_TCK)));  // 0.2 s
   const FleetCost c = fleet_cost(procs, a, b);
   ASSERT_TRUE(c.measured);
   EXPECT_EQ(c.ticks, 200);
@@ -101,6 +149,14 @@ TEST(BenchProc, CostPerTickByKindOverTheWindow) {
   EXPECT_NEAR(j["cs_tick_agents"].get<double>(), (2000.0 + 2400.0) / 200, 1e-9);
   EXPECT_NEAR(j["cs_tick_agent"].get<double>(), (2000.0 + 2400.0) / 2 / 200, 1e-9);
   EXPECT_NEAR(j["cpu_us_tick_ds"].get<double>(), 14000.0 / 200, 1e-9);
+  // By thread: the main threads of the six lock-step processes (2+4+6+8+10+12 ms / 2), the
+  // groups' solvers (2 x 1 ms), the rest (the server whole, the other halves less Level 2).
+  EXPECT_NEAR(j["cpu_us_tick_tick_path"].get<double>(), 21000.0 / 200, 1e-9);
+  EXPECT_NEAR(j["cpu_us_tick_level2"].get<double>(), 2000.0 / 200, 1e-9);
+  EXPECT_NEAR(j["cpu_us_tick_other_threads"].get<double>(), (21000.0 - 2000.0 + 14000.0) / 200, 1e-9);
+  EXPECT_NEAR(j["cpu_us_tick_processes"].get<double>(), 56000.0 / 200, 1e-9);
+  EXPECT_NEAR(j["cpu_us_tick_machine"].get<double>(), 200000.0 / 200, 1e-6);
+  EXPECT_NEAR(j["cpu_accounted_pct"].get<double>(), 28.0, 1e-6);  // 56 of 200 ms, no watch
 
   b.procs[5].reset();  // an agent gone before the end: no figure rather than a wrong one
   EXPECT_FALSE(fleet_cost(procs, a, b).measured);

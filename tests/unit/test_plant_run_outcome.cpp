@@ -83,16 +83,52 @@ TEST(PlantReport, EndReason) {
 
 TEST(PlantReport, TimingQuantiles) {
   plant::TickTiming t;
-  for (int i = 100; i >= 1; --i) t.add(float(i), i % 2 ? float(i) : -1.0f, 2.0f * i, 1.0f, 3.0f * i);
+  for (int i = 100; i >= 1; --i)
+    t.add(float(i), i % 2 ? float(i) : -1.0f, 2.0f * i, 1.0f, 3.0f * i, plant::TickNote{});
   const auto j = t.json();
   EXPECT_EQ(j["publish"]["median"].get<float>(), 50.0f);  // nearest rank below: v[49]
   EXPECT_EQ(j["publish"]["p90"].get<float>(), 90.0f);
   EXPECT_EQ(j["publish"]["p99"].get<float>(), 99.0f);
+  EXPECT_EQ(j["publish"]["max"].get<float>(), 100.0f);
+  EXPECT_DOUBLE_EQ(j["publish"]["mean"].get<double>(), 50.5);
   EXPECT_EQ(j["publish"]["n"].get<std::size_t>(), 100u);
   EXPECT_EQ(j["first_reply"]["n"].get<std::size_t>(), 50u);  // ticks without a reply are left out
   EXPECT_EQ(j["barrier"]["median"].get<float>(), 100.0f);
   EXPECT_EQ(j["tick"]["p99"].get<float>(), 297.0f);
+  EXPECT_TRUE(j["period"].empty());  // no period measured
   EXPECT_TRUE(plant::TickTiming().json()["tick"].empty());
+  EXPECT_TRUE(plant::TickTiming().json()["slowest_1pct"].empty());
+}
+
+TEST(PlantReport, TheSlowestTicksAreToldApartByWhatTheyHadInCommon) {
+  plant::TickTiming t;
+  // 200 ticks: the last answer is an agent's, one in ten wrote a trace row; the two slowest
+  // (1 % of 200) were answered last by a group solving Level 2, and traced.
+  for (int i = 0; i < 200; ++i) {
+    plant::TickNote n;
+    n.last = plant::TickNote::kAgent;
+    n.traced = i % 10 == 0;
+    float tick_us = 100.0f + static_cast<float>(i % 7);
+    if (i == 50 || i == 150) {
+      n.last = plant::TickNote::kGroup;
+      n.level2_solving = true;
+      tick_us = 5000.0f + static_cast<float>(i);
+    }
+    t.add(1.0f, 1.0f, tick_us - 2.0f, 1.0f, tick_us, n);
+    t.add_period(tick_us + 10.0f);
+  }
+  const auto s = t.json()["slowest_1pct"];
+  EXPECT_EQ(s["n"].get<double>(), 2.0);
+  EXPECT_EQ(s["threshold_us"].get<float>(), 5050.0f);  // the faster of the two
+  EXPECT_DOUBLE_EQ(s["slowest"]["last_group_pct"].get<double>(), 100.0);
+  EXPECT_DOUBLE_EQ(s["slowest"]["level2_solving_pct"].get<double>(), 100.0);
+  EXPECT_DOUBLE_EQ(s["slowest"]["traced_pct"].get<double>(), 100.0);  // ticks 50 and 150
+  EXPECT_DOUBLE_EQ(s["all"]["last_agent_pct"].get<double>(), 99.0);
+  EXPECT_DOUBLE_EQ(s["all"]["traced_pct"].get<double>(), 10.0);
+  const auto period = t.json()["period"];
+  EXPECT_EQ(period["n"].get<std::size_t>(), 200u);
+  EXPECT_GT(period["mean"].get<double>(), period["median"].get<float>());  // the tail pulls the mean up
+  EXPECT_EQ(period["max"].get<float>(), 5160.0f);
 }
 
 TEST(PlantReport, PlantJsonKeysAndMembershipEvents) {

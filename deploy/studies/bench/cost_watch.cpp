@@ -1,5 +1,7 @@
 #include "deploy/studies/bench/cost_watch.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -25,6 +27,8 @@ FleetSample sample(const std::vector<FleetProc>& procs, const std::string& trace
   FleetSample s;
   s.tick = last_trace_tick(trace);
   for (const auto& p : procs) s.procs.push_back(read_proc_counters(p.pid));
+  s.machine = read_machine_cpu();
+  if (const auto self = read_proc_counters(getpid())) s.watcher_cpu_s = self->cpu_s;
   return s;
 }
 

@@ -63,6 +63,35 @@ std::optional<long long> parse_status_ctx_switches(const std::string& status) {
   return *v + *nv;
 }
 
+namespace {
+
+/// The command of a /proc/.../stat text (between the first '(' and the last ')').
+std::string stat_comm(const std::string& stat) {
+  const auto open = stat.find('('), close = stat.rfind(')');
+  return open == std::string::npos || close == std::string::npos || close < open
+             ? std::string()
+             : stat.substr(open + 1, close - open - 1);
+}
+
+bool is_named(const std::string& comm) {
+  for (const char* n : kNamedThreads)
+    if (comm == n) return true;
+  return false;
+}
+
+}  // namespace
+
+double clock_ticks_s(long long ticks) {
+  return static_cast<double>(ticks) / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+std::optional<long long> parse_schedstat_ns(const std::string& schedstat) {
+  std::istringstream in(schedstat);
+  long long ns = -1;
+  if (!(in >> ns) || ns < 0) return std::nullopt;
+  return ns;
+}
+
 std::optional<ProcCounters> read_proc_counters(long pid) {
   const std::string dir = "/proc/" + std::to_string(pid);
   const auto stat = read_text(dir + "/stat");
@@ -72,14 +101,30 @@ std::optional<ProcCounters> read_proc_counters(long pid) {
   const auto ticks = parse_stat_cpu_ticks(*stat);
   if (!ticks) return std::nullopt;
   ProcCounters c;
-  c.cpu_s = static_cast<double>(*ticks) / static_cast<double>(sysconf(_SC_CLK_TCK));
+  double threads_s = 0.0;
+  bool every_thread_timed = true;
   std::error_code ec;
   for (const auto& task : fs::directory_iterator(dir + "/task", ec)) {
-    const auto status = read_text(task.path().string() + "/status");
+    const std::string tdir = task.path().string();
+    const auto status = read_text(tdir + "/status");
     if (!status) continue;  // a thread that ended meanwhile
     if (const auto cs = parse_status_ctx_switches(*status)) c.ctx_switches += *cs;
+    const auto sched = read_text(tdir + "/schedstat");
+    const auto ns = sched ? parse_schedstat_ns(*sched) : std::nullopt;
+    if (!ns) {
+      every_thread_timed = false;
+      continue;
+    }
+    const double s = static_cast<double>(*ns) * 1e-9;
+    threads_s += s;
+    const auto task_stat = read_text(tdir + "/stat");
+    if (task.path().filename() == std::to_string(pid))
+      c.main_cpu_s = s;
+    else if (const std::string comm = task_stat ? stat_comm(*task_stat) : ""; is_named(comm))
+      c.named_cpu_s[comm] += s;
   }
   if (ec) return std::nullopt;
+  c.cpu_s = every_thread_timed && threads_s > 0.0 ? threads_s : clock_ticks_s(*ticks);
   return c;
 }
 
@@ -94,6 +139,8 @@ std::optional<MachineCpu> parse_proc_stat_cpu(const std::string& stat) {
     if (!(in >> v) || v < 0) return std::nullopt;
     m.total += v;
     if (i == kFields - 1) m.steal = v;
+    constexpr int kIdle = 3, kIowait = 4;
+    if (i != kIdle && i != kIowait && i != kFields - 1) m.busy += v;
   }
   return m;
 }

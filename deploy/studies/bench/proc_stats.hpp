@@ -3,6 +3,7 @@
 // process (/proc/PID/stat, fields 14 and 15, in clock ticks) and voluntary + nonvoluntary
 // context switches summed over its threads (/proc/PID/task/TID/status: a process's own status
 // counts its main thread only, and a DDS process works in its other threads).
+#include <map>
 #include <optional>
 #include <string>
 
@@ -16,10 +17,22 @@ std::optional<long long> parse_stat_cpu_ticks(const std::string& stat);
 /// when either line is missing.
 std::optional<long long> parse_status_ctx_switches(const std::string& status);
 
-/// What a process has used so far.
+/// The threads the project names (comm/posix/thread_name.hpp): their CPU is told apart from
+/// the rest of a process's threads (Fast DDS's event, receive and discovery threads, logging).
+inline constexpr const char* kNamedThreads[] = {"level2", "recorder"};
+
+/// The first field of a /proc/.../schedstat text: time the task ran on a CPU, ns (the
+/// scheduler's own count, not rounded to clock ticks); nullopt when malformed.
+std::optional<long long> parse_schedstat_ns(const std::string& schedstat);
+
+/// What a process has used so far. CPU times are the scheduler's per-thread counts
+/// (/proc/PID/task/TID/schedstat, ns) summed over its live threads, where the kernel keeps them;
+/// else /proc/PID/stat's (10 ms clock ticks, too coarse for a tick of a few hundred µs).
 struct ProcCounters {
-  double cpu_s = 0.0;          ///< user + system, s
+  double cpu_s = 0.0;          ///< the whole process, s
   long long ctx_switches = 0;  ///< voluntary + nonvoluntary, over its live threads
+  double main_cpu_s = 0.0;     ///< its main thread's (the lock-step thread of a fleet process), s
+  std::map<std::string, double> named_cpu_s;  ///< live threads named in kNamedThreads, by name, s
 };
 
 /// A live process's counters; nullopt when it is gone, a zombie, or /proc cannot be read.
@@ -31,6 +44,7 @@ std::optional<ProcCounters> read_proc_counters(long pid);
 struct MachineCpu {
   long long total = 0;  ///< user + nice + system + idle + iowait + irq + softirq + steal
   long long steal = 0;
+  long long busy = 0;  ///< user + nice + system + irq + softirq: what this machine's CPUs ran
 };
 
 /// The first line of a /proc/stat text; nullopt when it is not the "cpu" line with at least the
@@ -39,6 +53,9 @@ std::optional<MachineCpu> parse_proc_stat_cpu(const std::string& stat);
 
 /// This machine's now; nullopt when /proc/stat cannot be read.
 std::optional<MachineCpu> read_machine_cpu();
+
+/// Clock ticks (of /proc/stat and /proc/PID/stat) in seconds.
+double clock_ticks_s(long long ticks);
 
 /// Steal between two reads as a share of all CPU time between them, %; 0 when no time passed.
 double steal_percent(const MachineCpu& before, const MachineCpu& after);

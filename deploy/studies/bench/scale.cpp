@@ -11,6 +11,7 @@
 #include "deploy/report/gnuplot.hpp"
 #include "deploy/studies/bench/bench_parts.hpp"
 #include "deploy/studies/bench/cost_watch.hpp"
+#include "deploy/studies/bench/dds_floor.hpp"
 #include "deploy/studies/bench/floor.hpp"
 #include "deploy/studies/bench/memory.hpp"
 #include "deploy/studies/bench/proc_stats.hpp"
@@ -117,10 +118,66 @@ json memory_json(const FleetMemory& mem) {
           {"pss_total_MB", mem.total_pss_kB / kKiB}};
 }
 
+/// What the slowest 1 % of the ticks had in common, beside all ticks (plant.tick_timing_us.slowest_1pct).
+json slowest_json(const records::Summary& sum) {
+  const json s = sum.tick_timing_json().value("slowest_1pct", json::object());
+  const json slow = s.value("slowest", json::object()), all = s.value("all", json::object());
+  json row;
+  for (const char* k : {"last_agent_pct", "last_group_pct", "last_central_pct", "level2_solving_pct", "traced_pct"}) {
+    row[std::string("slow_") + k] = slow.value(k, 0.0);
+    row[std::string("all_") + k] = all.value(k, 0.0);
+  }
+  return row;
+}
+
 /// "N16-ec", "N16-ec-hosts3", "N16-ec-hosts3-ssh": a row's run folder and JUnit case.
 std::string variant_name(const BenchOptions& o, int n, const std::string& mode, int hosts) {
   return "N" + std::to_string(n) + "-" + mode + (hosts > 1 ? "-hosts" + std::to_string(hosts) : "") +
          (hosts > 1 && o.ssh ? "-ssh" : "");
+}
+
+/// The plant's first tick (tick 0), µs: the write of the first tick opens every reader's port.
+double first_tick_us(const records::Summary& sum) {
+  for (const auto& t : sum.tick_timing_json().value("slowest_1pct", json::object()).value("ticks", json::array()))
+    if (t.value("tick", -1LL) == 0) return t.value("us", 0.0);
+  return 0.0;  // not among the five slowest
+}
+
+/// The DDS floor of a fleet of n agents: its N + 3 answering processes, its tick, the domain it
+/// ran on (now free), the plant's priority on the hub.
+DdsFloorOptions dds_floor_options(const BenchOptions& o, const config::Scenario& s, int n) {
+  DdsFloorOptions d;
+  d.workers = n + kAnswersBesideAgents;
+  d.agents = n;
+  d.domain = o.domain;
+  d.hub_priority = s.plant_priority;
+  return d;
+}
+
+/// The tick's distribution (the plant's figures) beside both floors of the same shape.
+json timing_json(const records::Summary& sum, const FloorResult& floor, const DdsFloorResult& dds) {
+  const records::TickTiming tick = sum.tick_timing("tick"), period = sum.tick_timing("period");
+  return {
+      {"tick_median_us", tick.median},
+      {"tick_median_ms", tick.median / 1000.0},
+      {"tick_p99_us", tick.p99},
+      {"tick_p99_ms", tick.p99 / 1000.0},
+      {"tick_mean_us", tick.mean},
+      {"tick_p90_us", tick.p90},
+      {"tick_max_us", tick.max},
+      {"period_median_us", period.median},
+      {"period_mean_us", period.mean},
+      {"mean_over_median", period.median > 0 ? period.mean / period.median : 0.0},
+      {"floor_median_us", floor.median_us},
+      {"x_floor", floor.median_us > 0 ? tick.median / floor.median_us : 0.0},
+      {"dds_floor_median_us", dds.median_us},
+      {"dds_floor_mean_us", dds.mean_us},
+      {"x_dds_floor", dds.median_us > 0 ? tick.median / dds.median_us : 0.0},
+      {"dds_floor_cpu_us_per_round", dds.cpu_us_per_round},
+      {"dds_floor_resent", dds.resent},
+      {"dds_floor_first_round_us", dds.first_round_us},
+      {"first_tick_us", first_tick_us(sum)},
+      {"dds_floor_problem", dds.measured ? "" : dds.problem}};
 }
 
 /// One fleet size in one control mode on `hosts` hosts (1: this machine, no namespaces): its
@@ -144,10 +201,11 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
   const double sim = sum.number_or(records::summary_key::kSimTime, 0),
                wall = sum.number_or(records::summary_key::kWallTime, 0);
   const std::string status = sum.status();
-  const records::TickTiming tick = sum.tick_timing("tick");
   // The floor of the same shape, measured right after the fleet, on the same machine state.
   const FloorResult floor = measure_floor(n + kAnswersBesideAgents);
   const auto machine2 = read_machine_cpu();
+  // And Fast DDS's own floor, the fleet's transport and QoS with nothing else.
+  const DdsFloorResult dds = measure_dds_floor(dds_floor_options(o, s, n));
   const auto steal = [](const std::optional<MachineCpu>& a, const std::optional<MachineCpu>& b) {
     return a && b ? steal_percent(*a, *b) : 0.0;
   };
@@ -170,18 +228,14 @@ json measure(const BenchOptions& o, int n, const std::string& mode, int hosts) {
       {"cpu_s_per_sim_s", sim > 0 ? cpu / sim : 0.0},
       {"samples_per_tick", n + 4},  // one PlantTick, N AgentReply, 2 GroupStatus, 1 CentralCommand
       {"bridge_bytes_per_tick", bridge_bytes_per_tick(sum)},
-      {"tick_median_us", tick.median},
-      {"tick_median_ms", tick.median / 1000.0},
-      {"tick_p99_us", tick.p99},
-      {"tick_p99_ms", tick.p99 / 1000.0},
-      {"floor_median_us", floor.median_us},
-      {"x_floor", floor.median_us > 0 ? tick.median / floor.median_us : 0.0},
       {"floor_cs_per_round", floor.ctx_switches_per_round},
       {"floor_cpu_us_per_round", floor.cpu_us_per_round},
       {"steal_pct_fleet", steal(machine0, machine1)},
       {"steal_pct_floor", steal(machine1, machine2)}};
+  row.update(timing_json(sum, floor, dds));
   row.update(memory_json(mem));
   row.update(fleet_cost_json(cost));
+  row.update(slowest_json(sum));
   return row;
 }
 
