@@ -193,6 +193,12 @@ void HostPlacement::ship(const std::string& scenario_text) {
 void HostPlacement::collect() {
   for (std::size_t i = 0; i < disks_.size(); ++i) {
     if (disks_[i] != HostDisk::kOwn) continue;
+    if (net_ && hosts_[i].partitioned) {  // the launcher cut its link: no copy could get through
+      files_[i] = std::string("its own: not collected: its link is down at the end (") +
+                  (hosts_[i].lost ? "lost" : "cut off") + ")";
+      log_.info("{}'s run folder, {}", hosts_[i].name, files_[i]);
+      continue;
+    }
     files_[i] =
         "its own: " + collect_run_files(hosts_[i].prefix, run_dir_, hosts_[i].name, {"scenario.yaml"});
     log_.info("{}'s run folder, {}", hosts_[i].name, files_[i]);
