@@ -49,6 +49,9 @@ struct DdsOptions {
   bool shm = true;              ///< shared memory for data (else UDP only)
   bool shm_data_only = true;    ///< with shm: user data on shared memory only, UDP for discovery
   uint32_t shm_port_queue = 0;  ///< messages the shared-memory listening port holds; 0: default
+  /// Bytes of the UDP sockets' receive buffers (0: the system's default; the kernel caps it at
+  /// net.core.rmem_max).
+  uint32_t udp_receive_buffer_bytes = 0;
   std::string interface_address = "127.0.0.1";  ///< the one IPv4 interface UDP uses
   uint32_t fleet_id = 0;                        ///< the run's fleet id (comm/dds/fleet_ids.hpp); 0: none
   /// Folder of a secure domain (comm/dds/security.hpp): the participant authenticates as the

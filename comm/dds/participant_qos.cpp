@@ -161,6 +161,7 @@ void set_transports(dds::DomainParticipantQos& q, const DdsOptions& o) {
   }
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   udp->interfaceWhiteList.emplace_back(o.interface_address);
+  if (o.udp_receive_buffer_bytes > 0) udp->receiveBufferSize = o.udp_receive_buffer_bytes;
   q.transport().user_transports.push_back(udp);
 }
 

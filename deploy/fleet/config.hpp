@@ -74,6 +74,10 @@ struct FleetConfig {
   /// saturated machine that thread may wait tens of milliseconds for a core; a sample pushed
   /// into a full port is lost to run.mcap.
   int recorder_port_queue(int agents) const { return std::max(8192, 64 * (agents + 8)); }
+  /// The recorder's UDP receive buffers, bytes: on several hosts the other hosts' samples reach it
+  /// over UDP, in bursts of a tick's answers, and a sample that finds the buffer full is lost to
+  /// run.mcap (the kernel caps the size at net.core.rmem_max; Debian's default is 208 KiB).
+  uint32_t recorder_udp_buffer_bytes = 8u << 20;
   /// A fleet on several hosts: how long a process cut off from the plant (a partition) waits
   /// for it to come back before it ends, s.
   double host_plant_loss_s = 120.0;

@@ -20,6 +20,7 @@ FleetRecorder::FleetRecorder(const config::Scenario& sc, const comm::DdsOptions&
   const int id = comm::fleet_stride(sc.robot.agents) + comm::kLauncherParticipantId;
   o.participant_id = id <= comm::rtps_max_participant_id(o.domain) ? id : -1;
   o.shm_port_queue = static_cast<uint32_t>(cfg.recorder_port_queue(sc.robot.agents));
+  o.udp_receive_buffer_bytes = cfg.recorder_udp_buffer_bytes;
   participant_id_ = o.participant_id;
   recorder_ = std::make_unique<recorder::Recorder>(o, records::mcap_path(run_dir), scope, sc.robot.agents,
                                                    records::mcap_compression(sc.record_compression));

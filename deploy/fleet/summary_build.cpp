@@ -192,8 +192,19 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   if (s["recording"].is_object()) s["recording"]["rejected"] = r.recorded_rejected;
   const std::string trace = records::trace_path(run_dir);
   s["trace_sha256"] = std::filesystem::exists(trace) ? sha256_of(trace) : "";
-  s["status"] = kids.empty() ? r.status : final_status(r.status, plant, kids.front());
+  s["status"] = recording_status(kids.empty() ? r.status : final_status(r.status, plant, kids.front()),
+                                 s["recording"]);
   return s;
+}
+
+std::string recording_status(const std::string& status, const nlohmann::json& recording) {
+  if (status != "ok" || !recording.is_object()) return status;
+  std::string missing;
+  const nlohmann::json incomplete = recording.value("incomplete", nlohmann::json::object());
+  for (const auto& [topic, c] : incomplete.items())
+    missing += (missing.empty() ? "" : ", ") + topic + " holds " + std::to_string(c.value("recorded", 0ULL)) +
+               " of the " + std::to_string(c.value("taken_by_plant", 0ULL)) + " samples the plant used";
+  return missing.empty() ? status : "degraded: run.mcap incomplete: " + missing;
 }
 
 nlohmann::json recording_check(const std::map<std::string, uint64_t>& recorded,

@@ -44,6 +44,11 @@ struct RunRecord {
   std::map<std::string, uint64_t> recorded_rejected;
 };
 
+/// The run's status with its recording: an `ok` run whose run.mcap holds fewer messages on a
+/// topic than the plant used (recording_check's "incomplete") is "degraded: run.mcap incomplete:
+/// <topic> holds N of the M samples the plant used, ..."; any other status as it is.
+std::string recording_status(const std::string& status, const nlohmann::json& recording);
+
 /// run.mcap against what the plant used: {"recorded": {topic: n}, "incomplete": {topic:
 /// {"recorded": n, "taken_by_plant": m}}} for each topic of which run.mcap holds fewer messages
 /// than the plant used answers (every answer it used was sent to the recorder too); null without

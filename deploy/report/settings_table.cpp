@@ -62,6 +62,8 @@ std::vector<config::Setting> launcher_settings() {
        "the largest secure fleet (its simple discovery runs over shared memory)"},
       {"launcher.shm_port_queue", "max(512, 4 x (N + 8))", "samples", "a shared-memory port's queue"},
       {"launcher.recorder_port_queue", "max(8192, 64 x (N + 8))", "samples", "the recorder's port's queue"},
+      {"launcher.recorder_udp_buffer_bytes", setting_value(static_cast<int>(launcher.recorder_udp_buffer_bytes)),
+       "bytes", "the recorder's UDP receive buffers (other hosts' samples; capped by net.core.rmem_max)"},
       {"launcher.host_plant_loss_s", setting_value(launcher.host_plant_loss_s), "s",
        "on several hosts, how long a process cut off from the plant waits for it"},
       {"launcher.stall_s", setting_value(launcher.stall_s), "s",

@@ -214,6 +214,13 @@ TEST(FleetSummary, ARecordingWithFewerAnswersThanThePlantUsedIsIncompleteAndSaid
   // A complete recording, a topic the recording leaves out (record: plant), and none at all.
   EXPECT_TRUE(recording_check({{"maptr/agent_reply", 512000}, {"maptr/tick", 1001}}, plant)["incomplete"].empty());
   EXPECT_TRUE(recording_check({}, plant).is_null());
+  // The run does not end ok with it: an ok run becomes degraded and says what is missing; a
+  // status that is already not ok stays as it is; a complete recording or none leaves ok.
+  EXPECT_EQ(recording_status("ok", c),
+            "degraded: run.mcap incomplete: maptr/agent_reply holds 32967 of the 512000 samples the plant used");
+  EXPECT_EQ(recording_status("aborted: stop signal", c), "aborted: stop signal");
+  EXPECT_EQ(recording_status("ok", recording_check({{"maptr/agent_reply", 512000}}, plant)), "ok");
+  EXPECT_EQ(recording_status("ok", nullptr), "ok");
 }
 
 }  // namespace
