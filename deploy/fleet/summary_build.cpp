@@ -135,6 +135,27 @@ nlohmann::json processes_json(const std::vector<Child>& kids) {
   return procs;
 }
 
+namespace {
+
+/// The samples the fleet dropped: by process, the launcher's readiness, by kind.
+void add_rejected(nlohmann::json& s, const std::optional<records::PlantResults>& plant, const RunRecord& r) {
+  // Samples dropped as malformed, forged or from a wrong sender, by the process that dropped them;
+  // the plant's late answers from their rightful sender are counted apart (plant.json late_samples).
+  nlohmann::json rejected = plant ? nlohmann::json(plant->rejected_by_process) : nlohmann::json::object();
+  rejected["launcher"] = r.launcher_rejected;
+  s["rejected_samples"] = rejected;
+  // The launcher's readiness: forged NodeReady samples, and stale ones from a process's earlier start.
+  nlohmann::json ready = {{"forged", 0}, {"stale", 0}, {"malformed", 0}};
+  for (const auto& [kind, n] : r.ready_rejected) ready[kind] = n;
+  s["rejected_ready"] = ready;
+  // By kind, for the processes that count their own by kind (the plant and the launcher).
+  s["rejected_by_kind"] = {
+      {"plant", plant ? nlohmann::json(plant->rejected_by_kind) : nlohmann::json::object()},
+      {"launcher", r.launcher_by_kind}};
+}
+
+}  // namespace
+
 nlohmann::json build_summary(const config::Scenario& sc, const std::string& project_root, const RunRecord& r,
                              const std::string& run_dir, const std::vector<Child>& kids) {
   const std::optional<records::PlantResults> plant = records::read_plant_results(run_dir);
@@ -171,19 +192,7 @@ nlohmann::json build_summary(const config::Scenario& sc, const std::string& proj
   s["membership_events"] = membership_events(plant_events, r.failures);
   if (r.chaos_seed >= 0) s["chaos_seed"] = r.chaos_seed;
   s["plant"] = plant ? records::to_json(*plant) : nlohmann::json::object();
-  // Samples dropped as malformed, forged or from a wrong sender, by the process that dropped them;
-  // the plant's late answers from their rightful sender are counted apart (plant.json late_samples).
-  nlohmann::json rejected = plant ? nlohmann::json(plant->rejected_by_process) : nlohmann::json::object();
-  rejected["launcher"] = r.launcher_rejected;
-  s["rejected_samples"] = rejected;
-  // The launcher's readiness: forged NodeReady samples, and stale ones from a process's earlier start.
-  nlohmann::json ready = {{"forged", 0}, {"stale", 0}, {"malformed", 0}};
-  for (const auto& [kind, n] : r.ready_rejected) ready[kind] = n;
-  s["rejected_ready"] = ready;
-  // By kind, for the processes that count their own by kind (the plant and the launcher).
-  s["rejected_by_kind"] = {
-      {"plant", plant ? nlohmann::json(plant->rejected_by_kind) : nlohmann::json::object()},
-      {"launcher", r.launcher_by_kind}};
+  add_rejected(s, plant, r);
   s["level2"] = level2_stats(run_dir);
   s["processes"] = processes_json(kids);
   if (!r.hosts.is_null()) s["hosts"] = r.hosts;

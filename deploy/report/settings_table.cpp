@@ -60,6 +60,16 @@ std::vector<config::Setting> launcher_settings() {
        "the launcher's participants' time to be deleted before it writes its results and ends"},
       {"launcher.secure_max_agents", setting_value(launcher.secure_max_agents), "agents",
        "the largest secure fleet (its simple discovery runs over shared memory)"},
+  };
+  // clang-format on
+}
+
+/// The launcher's transport queues and buffers, its stall limit and its polls (FleetConfig).
+std::vector<config::Setting> launcher_transport_settings() {
+  using config::setting_value;
+  const fleet::FleetConfig launcher;
+  // clang-format off
+  return {
       {"launcher.shm_port_queue", "max(512, 4 x (N + 8))", "samples", "a shared-memory port's queue"},
       {"launcher.recorder_port_queue", "max(8192, 64 x (N + 8))", "samples", "the recorder's port's queue"},
       {"launcher.recorder_udp_buffer_bytes", setting_value(static_cast<int>(launcher.recorder_udp_buffer_bytes)),
@@ -148,7 +158,8 @@ std::vector<config::Setting> core_settings() {
 
 std::vector<config::Setting> all_settings() {
   std::vector<config::Setting> all = launcher_settings();
-  for (auto part : {plant_settings(), core_settings()}) all.insert(all.end(), part.begin(), part.end());
+  for (auto part : {launcher_transport_settings(), plant_settings(), core_settings()})
+    all.insert(all.end(), part.begin(), part.end());
   return all;
 }
 
