@@ -42,7 +42,7 @@ bool Level2Worker::solving() {
 }
 
 void Level2Worker::loop() {
-  comm::name_this_thread("level2");
+  comm::name_this_thread(comm::kLevel2Thread);
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
     cv_.wait(lock, [this] { return has_job_ || quit_; });

@@ -170,7 +170,7 @@ void Recorder::push(uint16_t topic, const eprosima::fastrtps::rtps::InstanceHand
 }
 
 void Recorder::write_loop() {
-  comm::name_this_thread("recorder");
+  comm::name_this_thread(comm::kRecorderThread);
   std::unique_lock<std::mutex> lk(m_);
   for (;;) {
     cv_.wait_for(lk, kWritePeriod, [this] { return stopping_ || queue_.size() >= kWakeBatch; });

@@ -6,6 +6,10 @@
 
 namespace maptr::comm {
 
+/// The names of the project's own threads (the benches read them back from /proc).
+inline constexpr const char* kLevel2Thread = "level2";
+inline constexpr const char* kRecorderThread = "recorder";
+
 /// Names the calling thread (at most 15 characters); a name that does not fit is left out.
 inline void name_this_thread(const char* name) { pthread_setname_np(pthread_self(), name); }
 

@@ -37,7 +37,8 @@ void add_threads(ThreadCost& t, ProcKind kind, const ProcCounters& a, const Proc
     const auto at = [&](const ProcCounters& c) { return c.named_cpu_s.count(name) ? c.named_cpu_s.at(name) : 0.0; };
     return std::max(0.0, at(b) - at(a));  // a thread that ended in the window: counted with the rest
   };
-  const double whole = us(b.cpu_s - a.cpu_s), level2 = us(named("level2")), recorder = us(named("recorder"));
+  const double whole = us(b.cpu_s - a.cpu_s), level2 = us(named(comm::kLevel2Thread)),
+               recorder = us(named(comm::kRecorderThread));
   const bool lock_step = kind != ProcKind::kDiscovery && kind != ProcKind::kLauncher;
   const double main = lock_step ? us(std::max(0.0, b.main_cpu_s - a.main_cpu_s)) : 0.0;
   t.tick_path_us += main;

@@ -65,14 +65,6 @@ std::optional<long long> parse_status_ctx_switches(const std::string& status) {
 
 namespace {
 
-/// The command of a /proc/.../stat text (between the first '(' and the last ')').
-std::string stat_comm(const std::string& stat) {
-  const auto open = stat.find('('), close = stat.rfind(')');
-  return open == std::string::npos || close == std::string::npos || close < open
-             ? std::string()
-             : stat.substr(open + 1, close - open - 1);
-}
-
 bool is_named(const std::string& comm) {
   for (const char* n : kNamedThreads)
     if (comm == n) return true;
@@ -117,11 +109,12 @@ std::optional<ProcCounters> read_proc_counters(long pid) {
     }
     const double s = static_cast<double>(*ns) * 1e-9;
     threads_s += s;
-    const auto task_stat = read_text(tdir + "/stat");
-    if (task.path().filename() == std::to_string(pid))
+    if (task.path().filename() == std::to_string(pid)) {
       c.main_cpu_s = s;
-    else if (const std::string comm = task_stat ? stat_comm(*task_stat) : ""; is_named(comm))
-      c.named_cpu_s[comm] += s;
+    } else if (const auto name = read_text(tdir + "/comm")) {
+      const std::string comm = name->substr(0, name->find('\n'));
+      if (is_named(comm)) c.named_cpu_s[comm] += s;
+    }
   }
   if (ec) return std::nullopt;
   c.cpu_s = every_thread_timed && threads_s > 0.0 ? threads_s : clock_ticks_s(*ticks);

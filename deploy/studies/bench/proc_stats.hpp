@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "comm/posix/thread_name.hpp"
+
 namespace maptr::deploy {
 
 /// utime + stime of a /proc/PID/stat text, clock ticks; nullopt when malformed. The command
@@ -19,7 +21,7 @@ std::optional<long long> parse_status_ctx_switches(const std::string& status);
 
 /// The threads the project names (comm/posix/thread_name.hpp): their CPU is told apart from
 /// the rest of a process's threads (Fast DDS's event, receive and discovery threads, logging).
-inline constexpr const char* kNamedThreads[] = {"level2", "recorder"};
+inline constexpr const char* kNamedThreads[] = {comm::kLevel2Thread, comm::kRecorderThread};
 
 /// The first field of a /proc/.../schedstat text: time the task ran on a CPU, ns (the
 /// scheduler's own count, not rounded to clock ticks); nullopt when malformed.
