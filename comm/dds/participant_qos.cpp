@@ -150,8 +150,13 @@ void set_transports(dds::DomainParticipantQos& q, const DdsOptions& o) {
   // (loopback, or the host's address on a fleet of several hosts) carries discovery and the
   // data to other hosts. Fast DDS uses a peer's shared-memory locator only when the peer
   // announces the same host id (a hash of the host name and the IPv4 addresses it sees).
+  // A discovery server carries metatraffic only and talks UDP alone: with shared memory it would
+  // reach each new client through that client's shared-memory port, which Fast DDS 2.9 opens only
+  // after a health check that sleeps up to a third of a second unless the port's listener woke
+  // since the last check, in the server's receive thread, one client after another (at 512
+  // agents its UDP buffer overflowed meanwhile and discovery never completed; BENCHMARKS.md).
   q.transport().use_builtin_transports = false;
-  if (o.shm) {
+  if (o.shm && !o.is_server) {
     auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
     if (o.shm_segment_bytes > 0) shm->segment_size(o.shm_segment_bytes);
     if (o.shm_port_queue > 0) shm->port_queue_capacity(o.shm_port_queue);

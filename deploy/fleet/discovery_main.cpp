@@ -3,9 +3,11 @@
 // The launcher starts it before any other process and ends it after the last one; if it dies
 // during a run, the launcher starts it again on the same address and the clients re-register
 // (their participants ping a server they lost until it answers). It carries metatraffic only.
-// Its transports are the fleet's: with UDP alone, Fast DDS 2.9.1's send statistics
-// (OutputTrafficManager) hit an assertion within seconds; with shared memory beside UDP that
-// has been rare.
+// It talks to its clients over UDP only, whatever the fleet's data transport
+// (comm/dds/participant_qos.cpp says why). A UDP-only server of an earlier build aborted once
+// on Fast DDS 2.9.1's send-statistics assertion (`OutputTrafficManager.hpp:87`, a list its
+// comment calls not thread-safe); a server that dies is started again by the launcher, and
+// the matches made stay.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -31,7 +33,7 @@ int main(int argc, char** argv) {
                  maptr::comm::kEnvDiscoveryServer);
     return 2;
   }
-  o.is_server = true;  // transports as for the fleet (MAPTR_TRANSPORT)
+  o.is_server = true;
   auto& stop = maptr::comm::stop_flag();
   try {
     const auto servers = maptr::comm::split_servers(o.discovery_server);
