@@ -1,5 +1,6 @@
 #include "idl/rules.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace maptr::msg {
@@ -113,6 +114,10 @@ bool well_formed(const Control& c) {
 
 bool well_formed(const FaultGate& g) { return std::isfinite(g.t()) && g.t() >= 0.0; }
 
-bool well_formed(const NodeReady& r) { return name_ok(r.name()) && r.kind() <= NODE_PLANT && r.pid() != 0; }
+bool well_formed(const NodeReady& r) {
+  if (!name_ok(r.name()) || r.kind() > NODE_PLANT || r.pid() == 0) return false;
+  if (r.unmatched().size() > kMaxUnmatched || (r.ready() && !r.unmatched().empty())) return false;
+  return std::all_of(r.unmatched().begin(), r.unmatched().end(), name_ok);
+}
 
 }  // namespace maptr::msg

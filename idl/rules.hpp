@@ -24,6 +24,8 @@ struct FleetBounds {
 /// Longest process name a message may carry (names are L0.., R0.., group-L, group-R, central,
 /// plant: far shorter).
 inline constexpr std::size_t kMaxNameLength = 64;
+/// NodeReady.unmatched: at most this many names (the IDL's bound).
+inline constexpr std::size_t kMaxUnmatched = 64;
 
 /// PlantTick: every number finite; battery and applied voltages not negative;
 /// active, live and wake one entry of 0 or 1 per agent of a side; n_active and relay_count at
@@ -51,7 +53,8 @@ bool well_formed(const MembershipEvent& e, const FleetBounds& b);
 bool well_formed(const Control& c);
 /// FaultGate: t finite, not negative. Any: tick.
 bool well_formed(const FaultGate& g);
-/// NodeReady: a name of 1..kMaxNameLength characters, a known kind, pid not 0. Any: ready.
+/// NodeReady: a name of 1..kMaxNameLength characters, a known kind, pid not 0; unmatched at
+/// most kMaxUnmatched names of 1..kMaxNameLength characters, and empty when ready. Any: ready.
 bool well_formed(const NodeReady& r);
 
 }  // namespace maptr::msg

@@ -29,13 +29,31 @@ std::string part(const std::string& label, std::size_t matched, std::size_t expe
   return s + ")";
 }
 
-}  // namespace
-
-std::string discovery_wait_report(int agents, const DiscoveryView& v, std::size_t max_names) {
-  std::vector<std::string> agent_names;
+std::vector<std::string> agent_names(int agents) {
+  std::vector<std::string> out;
   const int per_side = agents / 2;
   for (int side = 0; side < 2; ++side)
-    for (int i = 0; i < per_side; ++i) agent_names.push_back(config::agent_name(side, i));
+    for (int i = 0; i < per_side; ++i) out.push_back(config::agent_name(side, i));
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> discovery_unmatched(int agents, const DiscoveryView& v, std::size_t max_names) {
+  const auto replies = names_of(v.reply_writers, agents), ticks = names_of(v.tick_readers, agents);
+  const auto groups = names_of(v.group_writers, agents), centrals = names_of(v.central_writers, agents);
+  std::vector<std::string> out;
+  const auto check = [&](const std::string& name, const std::set<std::string>& writers) {
+    if (out.size() < max_names && (!writers.count(name) || !ticks.count(name))) out.push_back(name);
+  };
+  for (const auto& a : agent_names(agents)) check(a, replies);
+  for (const char* g : {"group-L", "group-R"}) check(g, groups);
+  check("central", centrals);
+  return out;
+}
+
+std::string discovery_wait_report(int agents, const DiscoveryView& v, std::size_t max_names) {
+  const std::vector<std::string> agent_names = plant::agent_names(agents);
   std::vector<std::string> members = agent_names;
   for (const char* c : {"group-L", "group-R", "central"}) members.emplace_back(c);
   return part("agent replies", v.reply_writers.size(), static_cast<std::size_t>(agents), agent_names,

@@ -21,4 +21,8 @@ struct DiscoveryView {
 /// part, then "and K more".
 std::string discovery_wait_report(int agents, const DiscoveryView& v, std::size_t max_names = 12);
 
+/// The members (agents, then group-L, group-R, central) with an endpoint the plant has not
+/// matched: a reply or status writer, or a tick reader; each once, at most `max_names`.
+std::vector<std::string> discovery_unmatched(int agents, const DiscoveryView& v, std::size_t max_names);
+
 }  // namespace maptr::plant

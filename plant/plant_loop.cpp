@@ -38,7 +38,14 @@ std::vector<double> fault_times(const std::vector<config::FaultSpec>& faults) {
 
 /// What the members last commanded: each agent's applied voltage over the current tick, the
 
+std::string& hidden_agent() {
+  static std::string name;
+  return name;
+}
+
 }  // namespace
+
+void hide_first_answer_writer_of(const std::string& name) { hidden_agent() = name; }
 
 PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const PlantNodeConfig& c)
     : sc_(args.scenario),
@@ -90,11 +97,11 @@ bool PlantLoop::discover() {
   // Without progress for a while, the log says what is still missing (the launcher starts a
   // process again after a longer stall; this line tells which endpoints were never matched).
   auto counts = std::make_tuple(-1, -1, -1, -1);
-  auto last_change = t_launch, last_report = t_launch;
+  auto last_change = t_launch, last_report = t_launch, last_unmatched = t_launch;
   while (!stop_.load() && !started) {
     wait(c_.discovery_poll);
-    const auto now_counts = std::make_tuple(replies_.matched(), groups_.matched(), centrals_.matched(),
-                                            tick_match_.matched());
+    const int replies = replies_.matched() - hidden_replies();
+    const auto now_counts = std::make_tuple(replies, groups_.matched(), centrals_.matched(), tick_match_.matched());
     if (now_counts != counts) {
       counts = now_counts;
       last_change = Clock::now();
@@ -103,9 +110,17 @@ bool PlantLoop::discover() {
         Clock::now() - last_report >= c_.discovery_report) {
       last_report = Clock::now();
       log_.warn("discovery: no progress for {:.0f} s; matched {}",
-                std::chrono::duration<double>(last_report - last_change).count(), discovery_view_report(tick_readers));
+                std::chrono::duration<double>(last_report - last_change).count(),
+                discovery_wait_report(n_agents, discovery_view(tick_readers)));
     }
-    if (!announced && replies_.matched() >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
+    // The launcher hears whom the plant still misses: when only the plant is not ready, it starts
+    // those members again rather than the plant (Fleet::rematch_unready).
+    if (!announced && Clock::now() - last_unmatched >= c_.discovery_report) {
+      last_unmatched = Clock::now();
+      comm::report_unmatched(w_ready_, "plant", msg::NODE_PLANT,
+                             discovery_unmatched(n_agents, discovery_view(tick_readers), msg::kMaxUnmatched));
+    }
+    if (!announced && replies >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
         tick_match_.matched() >= tick_readers) {
       comm::announce_ready(w_ready_, "plant", msg::NODE_PLANT);
       announced = true;
@@ -259,7 +274,7 @@ void PlantLoop::log_membership() {
 
 // Launcher events: a death ends the wait for that process; a restarted process that is
 // matched and ready is waited for from the next tick on (its old writer no longer counts).
-std::string PlantLoop::discovery_view_report(int tick_readers) const {
+DiscoveryView PlantLoop::discovery_view(int tick_readers) const {
   const uint32_t fleet = p_.options().fleet_id;
   const auto ids = [fleet](const std::vector<Handle>& handles) {
     std::vector<int> out;
@@ -269,11 +284,24 @@ std::string PlantLoop::discovery_view_report(int tick_readers) const {
   };
   DiscoveryView v;
   v.reply_writers = ids(replies_.matched_writers());
+  if (!hidden_agent().empty()) {
+    const int hidden = comm::base_participant_id(hidden_agent(), sc_.robot.agents);
+    v.reply_writers.erase(std::remove(v.reply_writers.begin(), v.reply_writers.end(), hidden), v.reply_writers.end());
+  }
   v.group_writers = ids(groups_.matched_writers());
   v.central_writers = ids(centrals_.matched_writers());
   v.tick_readers = ids(tick_match_.matched_readers());
   v.tick_readers_expected = tick_readers;
-  return discovery_wait_report(sc_.robot.agents, v);
+  return v;
+}
+
+int PlantLoop::hidden_replies() const {
+  if (hidden_agent().empty()) return 0;
+  const int hidden = comm::base_participant_id(hidden_agent(), sc_.robot.agents);
+  const auto writers = replies_.matched_writers();
+  return static_cast<int>(std::count_if(writers.begin(), writers.end(), [&](const Handle& h) {
+    return comm::fleet_participant(p_.options().fleet_id, h) == hidden;
+  }));
 }
 
 bool PlantLoop::sent_by(const Handle& writer, int base_id) const {

@@ -17,6 +17,7 @@
 #include "comm/lockstep/tick_filter.hpp"
 #include "idl/maptrPubSubTypes.h"
 #include "plant/barrier.hpp"
+#include "plant/discovery_wait.hpp"
 #include "plant/fault_gate.hpp"
 #include "plant/ledger_keeper.hpp"
 #include "plant/membership.hpp"
@@ -62,6 +63,11 @@ struct TickTimes {
   TickNote note;  ///< reset when the barrier starts
 };
 
+/// A seam for the tests' hooked plant (tests/hooks): its discovery does not count the first start
+/// of agent `name`'s answer writer, as if the discovery server had dropped that endpoint (seen
+/// with 512 agents). The product installs none.
+void hide_first_answer_writer_of(const std::string& name);
+
 /// The plant's DDS endpoints and the protocol objects they feed.
 class PlantLoop {
  public:
@@ -96,7 +102,9 @@ class PlantLoop {
   /// (comm/dds/fleet_ids.hpp) in this fleet; always, without a fleet id.
   bool sent_by(const Handle& writer, int base_id) const;
   /// What the plant has matched so far, naming the members it has not (plant/discovery_wait.hpp).
-  std::string discovery_view_report(int tick_readers) const;
+  DiscoveryView discovery_view(int tick_readers) const;
+  /// The matched answer writers the test seam hides (hide_first_answer_writer_of); 0 without it.
+  int hidden_replies() const;
   /// Samples dropped by each process: the plant's own and what each follower last reported.
   std::map<std::string, uint64_t> rejects_by_process() const;
   /// Samples the plant itself dropped (checks failed, or a payload that did not deserialize).

@@ -5,6 +5,7 @@
 #include <spdlog/sinks/stdout_sinks.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdlib>
@@ -85,6 +86,7 @@ std::shared_ptr<spdlog::logger> make_logger(const ProcessArgs& a) {
 #include <unistd.h>
 
 #include "idl/maptrPubSubTypes.h"
+#include "idl/rules.hpp"
 
 namespace maptr::comm {
 
@@ -101,6 +103,18 @@ void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& na
   r.kind(kind);
   r.pid(static_cast<uint32_t>(getpid()));
   r.ready(true);
+  w->write(&r);
+}
+
+void report_unmatched(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind,
+                      const std::vector<std::string>& unmatched) {
+  msg::NodeReady r;
+  r.name(name);
+  r.kind(kind);
+  r.pid(static_cast<uint32_t>(getpid()));
+  r.ready(false);
+  const std::size_t n = std::min(unmatched.size(), msg::kMaxUnmatched);
+  r.unmatched().assign(unmatched.begin(), unmatched.begin() + static_cast<std::ptrdiff_t>(n));
   w->write(&r);
 }
 

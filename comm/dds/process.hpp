@@ -7,6 +7,7 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "comm/dds/dds.hpp"
 #include "config/scenario.hpp"
@@ -55,6 +56,11 @@ void set_ready_gate(ReadyGate gate);
 /// Publishes this process's NodeReady (once every needed endpoint is matched), unless the ready
 /// gate withholds it.
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind);
+
+/// Publishes a NodeReady that is not ready and names the members this process has not matched
+/// yet (at most msg::kMaxUnmatched of them): the plant, while its discovery waits.
+void report_unmatched(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind,
+                      const std::vector<std::string>& unmatched);
 
 /// Follows the plant's liveliness on a reader of its ticks. The plant counts as lost once a
 /// tick of it was received, then it was reported gone (lease expired or writer unmatched) and not heard from

@@ -162,6 +162,7 @@ class Fleet : private FaultTargets {
   StallWatch stall_;
   long gates_seen_ = 0;
   std::set<std::string> ready_names_;
+  std::vector<std::string> plant_unmatched_;  ///< the plant's latest report: the members it has not matched
   Clock::time_point t_launch_, t_run_, last_wave_, last_print_, last_progress_;
   bool plant_done_ = false;
   bool discovered_ = false;  ///< discover() has returned: deaths are announced from now on

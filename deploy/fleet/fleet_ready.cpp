@@ -65,6 +65,7 @@ std::vector<Child*> Fleet::believed_ready() {
     const ReadyVerdict v = judge_ready(claim_of(r, h, c));
     if (v == ReadyVerdict::kTaken) {
       if (r.ready() && std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+      if (!r.ready() && c->kind == ChildKind::kPlant) plant_unmatched_ = r.unmatched();
       continue;
     }
     const long n = ++rec_.ready_rejected[verdict_name(v)];
@@ -134,22 +135,29 @@ pid_t Fleet::start_again(Child& c) {
 void Fleet::rematch_unready() {
   // Before the run starts: end and start again, with the next participant id of its window,
   // every started process that is not ready; the plant (ready once it matched everyone) only
-  // when it is the last one.
-  std::vector<Child*> unready;
+  // when it is the last one, and then the members it says it has not matched, if it names any.
+  std::vector<std::string> unready;
+  std::set<std::string> ready;
   for (std::size_t i = 0; i < waves_->started(); ++i) {
-    Child& c = kids_[i];
-    if (!c.external && c.running && !ready_names_.count(c.name)) unready.push_back(&c);
+    const Child& c = kids_[i];
+    if (c.external || !c.running) continue;
+    if (ready_names_.count(c.name))
+      ready.insert(c.name);
+    else
+      unready.push_back(c.name);
   }
-  if (unready.size() > 1)
-    unready.erase(
-        std::remove_if(unready.begin(), unready.end(), [](Child* c) { return c->kind == ChildKind::kPlant; }),
-        unready.end());
-  for (Child* c : unready) {
+  const bool plant_asks = unready.size() == 1 && unready.front() == kids_.front().name;
+  for (const auto& name : rematch_choice(unready, plant_unmatched_, ready)) {
+    Child* c = find(name);
+    if (!c) continue;
+    ready_names_.erase(c->name);
     start_again(*c);
     rec_.rematched.push_back(c->name);
-    log_.warn("{} did not match the fleet within {:.0f} s of discovery's last progress; started again (pid {})",
-              c->name, cfg_.rematch_s(sc_.robot.agents, secure()), c->pid);
+    log_.warn("{} {} within {:.0f} s of discovery's last progress; started again (pid {})", c->name,
+              c->kind != ChildKind::kPlant && plant_asks ? "was not matched by the plant" : "did not match the fleet",
+              cfg_.rematch_s(sc_.robot.agents, secure()), c->pid);
   }
+  plant_unmatched_.clear();  // only a report after these starts counts
   last_progress_ = Clock::now();
 }
 

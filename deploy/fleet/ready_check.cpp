@@ -1,5 +1,6 @@
 #include "deploy/fleet/ready_check.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -16,6 +17,23 @@ ReadyVerdict judge_ready(const ReadyClaim& c) {
   if (!c.from_current_participant) return ReadyVerdict::kForged;
   if (c.external) return c.external_pid_ok ? ReadyVerdict::kTaken : ReadyVerdict::kForged;
   return c.pid_matches ? ReadyVerdict::kTaken : ReadyVerdict::kForged;
+}
+
+std::vector<std::string> rematch_choice(const std::vector<std::string>& unready,
+                                        const std::vector<std::string>& plant_unmatched,
+                                        const std::set<std::string>& ready) {
+  if (unready.size() == 1 && unready.front() == "plant" && !plant_unmatched.empty() &&
+      std::all_of(plant_unmatched.begin(), plant_unmatched.end(),
+                  [&ready](const std::string& n) { return ready.count(n) > 0; })) {
+    std::set<std::string> seen;
+    std::vector<std::string> out;
+    for (const auto& n : plant_unmatched)
+      if (seen.insert(n).second) out.push_back(n);
+    return out;
+  }
+  std::vector<std::string> out = unready;
+  if (out.size() > 1) out.erase(std::remove(out.begin(), out.end(), "plant"), out.end());
+  return out;
 }
 
 const char* verdict_name(ReadyVerdict v) {

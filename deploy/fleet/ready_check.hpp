@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
+#include <vector>
 
 namespace maptr::deploy::fleet {
 
@@ -51,5 +53,17 @@ std::optional<std::string> external_pid_problem(pid_t pid, const std::string& bi
 
 /// The NodeReady samples the launcher rejected, by kind ("forged", "stale", "malformed").
 using ReadyRejects = std::map<std::string, long>;
+
+/// Whom the launcher starts again when discovery made no progress for a while. `unready`: the
+/// launcher's own started processes that are not ready, in launch order ("plant" first). Every
+/// one of them, but the plant only when it is the last one. When it is, and its latest report
+/// (NodeReady.unmatched) names members that are all in `ready` (ready and the launcher's own),
+/// those members instead: their endpoints never reached the plant (Fast DDS's discovery server
+/// drops the endpoints it hears before their participant), while the plant, which may have
+/// matched hundreds of others, keeps them. A report naming anyone else leaves the plant's own
+/// start as the answer.
+std::vector<std::string> rematch_choice(const std::vector<std::string>& unready,
+                                        const std::vector<std::string>& plant_unmatched,
+                                        const std::set<std::string>& ready);
 
 }  // namespace maptr::deploy::fleet

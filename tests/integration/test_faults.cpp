@@ -386,6 +386,31 @@ TEST(Faults, APlantStartedAgainDuringDiscoveryIsTheOneWhoseGatesTheLauncherOpens
   EXPECT_EQ(text.find("from a participant other than the plant's"), std::string::npos) << text;
 }
 
+TEST(Faults, TheMembersThePlantNeverMatchedStartAgainNotThePlant) {
+  // The hooked plant does not count the first start of L1's answer writer, as when the
+  // discovery server dropped that endpoint (seen at 512 agents): every other process, L1
+  // included, is ready, and only the plant is not. Its report names L1, and the launcher starts
+  // L1 again, not the plant (which would have to discover the whole fleet again).
+  TempDir tmp;
+  const std::string out = tmp.path() + "/run";
+  const auto r = [&] {
+    const maptr::testing::HookedBinaries hook(maptr::test_hooks::kPlantBlindEnv, "L1");
+    return run_cli(run_args(out, {"--duration", "2"}), out, 300);
+  }();
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.summary["status"], "ok");
+  EXPECT_EQ(r.summary["discovery_rematched"], nlohmann::json::array({"L1"}));
+  for (const auto& p : r.summary["processes"])
+    EXPECT_EQ(p["starts"].get<int>(), p["name"] == "L1" ? 2 : 1) << p.dump();
+  std::ifstream log(out + "/logs/launcher.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("L1 was not matched by the plant within"), std::string::npos) << text;
+  std::ifstream plant_log(out + "/logs/plant.log");
+  const std::string plant((std::istreambuf_iterator<char>(plant_log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(plant.find("agent replies 15/16 (not matched: L1)"), std::string::npos) << plant;
+}
+
 TEST(Faults, AProcessThatAbortsDuringDiscoveryIsStartedAgain) {
   // As Fast DDS's assertion StatelessWriter::matched_reader_add ended an agent of a secure,
   // loaded fleet: the first start of L2 aborts (SIGABRT) where it would report ready. The

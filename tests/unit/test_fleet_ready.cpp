@@ -127,3 +127,18 @@ TEST(FleetReady, PidsThatAreNoProcessOfTheFleetAreRefused) {
 }
 
 }  // namespace
+
+TEST(FleetReady, TheMembersThePlantMissesStartAgainRatherThanThePlant) {
+  using maptr::deploy::fleet::rematch_choice;
+  using V = std::vector<std::string>;
+  const std::set<std::string> ready{"L0", "L1", "R0", "R1", "group-L", "group-R", "central"};
+  // Only the plant is not ready and it names ready members: those start again, each once.
+  EXPECT_EQ(rematch_choice({"plant"}, {"R1", "L0", "R1"}, ready), (V{"R1", "L0"}));
+  // Without a report, or naming a process that is not a ready member: the plant itself.
+  EXPECT_EQ(rematch_choice({"plant"}, {}, ready), V{"plant"});
+  EXPECT_EQ(rematch_choice({"plant"}, {"R1", "launcher"}, ready), V{"plant"});
+  // Others not ready too: those, never the plant, whatever it reports.
+  EXPECT_EQ(rematch_choice({"plant", "L1", "R0"}, {"R1"}, ready), (V{"L1", "R0"}));
+  EXPECT_EQ(rematch_choice({"L1"}, {"R1"}, ready), V{"L1"});
+  EXPECT_TRUE(rematch_choice({}, {"R1"}, ready).empty());
+}

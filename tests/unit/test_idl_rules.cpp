@@ -165,4 +165,23 @@ TEST(IdlRules, NodeReadyNamesAProcessOfKnownKindWithAPid) {
   EXPECT_FALSE(msg::well_formed(r));
 }
 
+TEST(IdlRules, NodeReadyNamesItsUnmatchedOnlyWhileNotReadyAndBounded) {
+  msg::NodeReady r;
+  r.name("plant");
+  r.kind(msg::NODE_PLANT);
+  r.pid(1234);
+  r.ready(false);
+  r.unmatched({"R10", "group-L"});
+  EXPECT_TRUE(msg::well_formed(r));
+  r.ready(true);  // a ready process misses nobody
+  EXPECT_FALSE(msg::well_formed(r));
+  r.ready(false);
+  r.unmatched({"R10", ""});
+  EXPECT_FALSE(msg::well_formed(r));
+  r.unmatched(std::vector<std::string>(msg::kMaxUnmatched, "R10"));
+  EXPECT_TRUE(msg::well_formed(r));
+  r.unmatched().push_back("R11");
+  EXPECT_FALSE(msg::well_formed(r));
+}
+
 }  // namespace
