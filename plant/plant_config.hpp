@@ -41,6 +41,9 @@ struct PlantNodeConfig {
   std::chrono::milliseconds discovery_poll{200};
   /// Discovery without progress this long: the log names what is not matched (again every period).
   std::chrono::milliseconds discovery_report{5000};
+  /// Once every endpoint is matched, longest wait for the members' hello readers before the
+  /// hello goes out anyway (it only opens their ports early), ms.
+  std::chrono::milliseconds hello_wait{5000};
   /// Time the last Tick is given to reach every reader before the participant goes away, ms.
   std::chrono::milliseconds linger{200};
 

@@ -73,6 +73,16 @@ PlantLoop::PlantLoop(const comm::ProcessArgs& args, spdlog::logger& log, const P
             &members_);
   p_.reader(p_.topic<msg::ControlPubSubType>(comm::topic::kControl), comm::Profile::kLatched, &controls_);
   w_ready_ = p_.writer(p_.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched);
+  // Fast DDS opens another process's shared-memory port at the first write to it, and opening
+  // one can wait out its health check (up to a third of a second): the members' readies (read
+  // here) and the plant's hello (read by every member) open both ways before tick 0. The hello
+  // is best effort: a reliable writer sends each reader a heartbeat as it matches, in Fast DDS's
+  // discovery thread, which would then open the 512 ports there (at 512 agents the plant lost
+  // hundreds of matches meanwhile); its one write opens them in this thread, after discovery.
+  p_.reader(p_.topic<msg::NodeReadyPubSubType>(comm::topic::kReady), comm::Profile::kLatched, &readies_);
+  hello_match_.only_fleet(args.dds.fleet_id);
+  w_hello_ = p_.writer(p_.topic<msg::NodeReadyPubSubType>(comm::topic::kHello), comm::Profile::kStream,
+                       &hello_match_);
   w_gate_ = p_.writer(p_.topic<msg::FaultGatePubSubType>(comm::topic::kGate), comm::Profile::kLatched);
   for (int s = 0; s < 2; ++s) {
     cmd_.applied[s].assign(per_side_, plant_core::AgentApplied{});
@@ -122,6 +132,7 @@ bool PlantLoop::discover() {
     }
     if (!announced && replies >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
         tick_match_.matched() >= tick_readers) {
+      say_hello(tick_readers - 1);  // every tick reader but the launcher's
       comm::announce_ready(w_ready_, "plant", msg::NODE_PLANT);
       announced = true;
       log_.info("all {} agents, 2 groups and central matched after {:.2f} s", n_agents,
@@ -131,6 +142,16 @@ bool PlantLoop::discover() {
       if (c.command() == msg::CONTROL_START) started = true;
   }
   return started;
+}
+
+void PlantLoop::say_hello(int members) {
+  // Best effort reaches only the readers matched by now.
+  const auto until = Clock::now() + c_.hello_wait;
+  while (hello_match_.matched() < members && Clock::now() < until && !stop_.load()) wait(c_.discovery_poll);
+  const auto t0 = Clock::now();
+  comm::announce_ready(w_hello_, "plant", msg::NODE_PLANT);
+  log_.info("hello to {} of {} readers in {:.3f} s (their ports open before tick 0)", hello_match_.matched(), members,
+            std::chrono::duration<double>(Clock::now() - t0).count());
 }
 
 void PlantLoop::set_scheduling(std::string what) {

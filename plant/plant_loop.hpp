@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "comm/dds/discard.hpp"
 #include "comm/dds/process.hpp"
 #include "comm/lockstep/tick_filter.hpp"
 #include "idl/maptrPubSubTypes.h"
@@ -110,6 +111,8 @@ class PlantLoop {
   /// Samples the plant itself dropped (checks failed, or a payload that did not deserialize).
   uint64_t own_rejects() const;
   void wait(std::chrono::milliseconds at_most);
+  /// Writes the plant's hello (topic::kHello) to its `members` readers and logs how long it took.
+  void say_hello(int members);
   /// Sleeps until every late member's answer may have arrived (one wake-up, not one per sample),
   /// a membership event, or `at_most`.
   void wait_for_answers(uint64_t seen, std::chrono::milliseconds at_most);
@@ -133,9 +136,12 @@ class PlantLoop {
   /// before the participant, whose end still deletes filters through it).
   comm::TickFilterGate filter_gate_;
   comm::TickWriterMatch tick_match_{&signal_, &filter_gate_};
+  comm::MatchCounter hello_match_;
+  comm::Discard<msg::NodeReady> readies_;  ///< read so that each member's ready opens this port
   comm::Participant p_;
   eprosima::fastdds::dds::DataWriter* w_tick_ = nullptr;
   eprosima::fastdds::dds::DataWriter* w_ready_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* w_hello_ = nullptr;
   eprosima::fastdds::dds::DataWriter* w_gate_ = nullptr;
   uint64_t seen_ = 0;
   uint64_t consumed_ = 0;  ///< lock-step samples taken from the counted inboxes so far

@@ -74,6 +74,10 @@ Verdict judge_sample(const std::string& topic, const std::string& bytes, const s
   if (topic == t::kGate)
     return check<msg::FaultGatePubSubType, msg::FaultGate>(
         bytes, topic, writer, [](const auto& m) { return well_formed(m); }, any);
+  if (topic == t::kHello)  // the plant's NodeReady again, to the members (comm/dds/dds.hpp)
+    return check<msg::NodeReadyPubSubType, msg::NodeReady>(
+        bytes, topic, writer, [](const auto& m) { return well_formed(m); },
+        [&](const auto& m) { return writer == "plant" && m.name() == writer; });
   if (topic == t::kReady)
     return check<msg::NodeReadyPubSubType, msg::NodeReady>(
         bytes, topic, writer, [](const auto& m) { return well_formed(m); },

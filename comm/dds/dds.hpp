@@ -69,6 +69,9 @@ inline constexpr const char* kReady = "maptr/ready";
 inline constexpr const char* kMembership = "maptr/membership";
 inline constexpr const char* kControl = "maptr/control";
 inline constexpr const char* kGate = "maptr/gate";
+/// The plant's NodeReady again, to every member before tick 0: its write opens each member's
+/// shared-memory port, which tick 0 would otherwise open one by one (BENCHMARKS.md, tick 0).
+inline constexpr const char* kHello = "maptr/hello";
 }  // namespace topic
 
 /// The QoS profiles of the protocol, defined in comm/dds/maptr_qos.xml (installed as

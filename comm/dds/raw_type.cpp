@@ -61,6 +61,7 @@ const std::vector<FleetTopic>& fleet_topics() {
       make<msg::ControlPubSubType>(topic::kControl, Profile::kLatched, false),
       make<msg::NodeReadyPubSubType>(topic::kReady, Profile::kLatched, false),
       make<msg::FaultGatePubSubType>(topic::kGate, Profile::kLatched, true),
+      make<msg::NodeReadyPubSubType>(topic::kHello, Profile::kStream, true),
   };
   return all;
 }
@@ -73,7 +74,7 @@ const FleetTopic* find_fleet_topic(const std::string& name) {
 
 std::vector<std::string> published_topics(const std::string& name) {
   int side = 0, index = 0;
-  if (name == "plant") return {topic::kTick, topic::kGate, topic::kReady};
+  if (name == "plant") return {topic::kTick, topic::kGate, topic::kReady, topic::kHello};
   if (name == "central") return {topic::kCentral, topic::kReady};
   if (name == "group-L" || name == "group-R") return {topic::kGroup, topic::kReady};
   if (name == "launcher") return {topic::kMembership, topic::kControl};

@@ -41,6 +41,8 @@ TickFollower::TickFollower(const ProcessArgs& args, msg::NodeKind node_kind,
   else
     p.reader(tick, Profile::kStream, &ticks_);
   ready_ = p.writer(p.topic<msg::NodeReadyPubSubType>(topic::kReady), Profile::kLatched);
+  // Read only so that the plant's hello opens this process's port before tick 0 (topic::kHello).
+  p.reader(p.topic<msg::NodeReadyPubSubType>(topic::kHello), Profile::kStream, &hello_);
 }
 
 bool TickFollower::from_plant(const eprosima::fastrtps::rtps::InstanceHandle_t& writer) {

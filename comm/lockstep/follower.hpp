@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 
+#include "comm/dds/discard.hpp"
 #include "comm/dds/process.hpp"
 #include "comm/lockstep/tick_check.hpp"
 #include "idl/maptrPubSubTypes.h"
@@ -73,6 +74,7 @@ class TickFollower {
   // Listeners first: they must outlive the participant that calls them.
   Signal signal_;
   Direct<msg::PlantTick> ticks_{signal_};
+  Discard<msg::NodeReady> hello_;
   MatchCounter answer_match_{&signal_};
   std::unique_ptr<Participant> participant_;
   eprosima::fastdds::dds::DataWriter* ready_ = nullptr;

@@ -122,6 +122,8 @@ std::vector<config::Setting> plant_settings() {
        "longest wait for a sample in the barrier and a fault gate"},
       {"plant.discovery_poll", setting_value(plant.discovery_poll), "ms",
        "longest wait for a sample in discovery"},
+      {"plant.hello_wait", setting_value(plant.hello_wait), "ms",
+       "once the fleet is matched, longest wait for the members' hello readers (the hello opens their ports before tick 0)"},
       {"plant.discovery_report", setting_value(plant.discovery_report), "ms",
        "discovery without progress this long: the log names what is not matched"},
       {"plant.linger", setting_value(plant.linger), "ms", "time the last tick gets to reach every reader"}

@@ -84,6 +84,10 @@ TEST(SampleVerdict, ASampleMustNameItsOwnSender) {
   EXPECT_EQ(judge(comm::topic::kGroup, status(0, kAgents / 2), "group-R"), Verdict::kForged);
   EXPECT_EQ(judge(comm::topic::kReady, ready("L3"), "L3"), Verdict::kTaken);
   EXPECT_EQ(judge(comm::topic::kReady, ready("plant"), "L3"), Verdict::kForged);
+  // The hello is the plant's alone: a member's own ready on it is forged.
+  EXPECT_EQ(judge(comm::topic::kHello, ready("plant"), "plant"), Verdict::kTaken);
+  EXPECT_EQ(judge(comm::topic::kHello, ready("L3"), "L3"), Verdict::kForged);
+  EXPECT_EQ(judge(comm::topic::kHello, ready("plant"), "L3"), Verdict::kForged);
 }
 
 TEST(SampleVerdict, TheTypesRuleHolds) {
@@ -104,7 +108,7 @@ TEST(SampleVerdict, UndecodableWhoeverSentIt) {
   const std::string short_payload("\x00\x01\x00\x00\x01", 5);
   for (const char* topic :
        {comm::topic::kControl, comm::topic::kMembership, comm::topic::kGate, comm::topic::kReady,
-        comm::topic::kTick, comm::topic::kAgentReply, comm::topic::kGroup, comm::topic::kCentral}) {
+        comm::topic::kHello, comm::topic::kTick, comm::topic::kAgentReply, comm::topic::kGroup, comm::topic::kCentral}) {
     EXPECT_EQ(judge(topic, short_payload, ""), Verdict::kUndecodable) << topic;
     EXPECT_EQ(judge(topic, "", "plant"), Verdict::kUndecodable) << topic;
   }

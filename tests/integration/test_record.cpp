@@ -78,7 +78,8 @@ TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
   // publishes the topic, and the fleet's verdict "taken" (nobody sent anything bad).
   // (A channel appears with its writer's first sample: a topic nobody wrote on has none.)
   for (const char* t :
-       {"maptr/tick", "maptr/agent_reply", "maptr/group", "maptr/central", "maptr/ready", "maptr/control"})
+       {"maptr/tick", "maptr/agent_reply", "maptr/group", "maptr/central", "maptr/ready", "maptr/control",
+        "maptr/hello"})
     EXPECT_TRUE(topics.count(t)) << t;
   for (const auto& [topic, messages] : topics) EXPECT_NE(comm::find_fleet_topic(topic), nullptr) << topic;
   std::map<std::string, std::set<std::string>> writers_of;
@@ -96,6 +97,7 @@ TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
   EXPECT_EQ(writers_of["maptr/agent_reply"].size(), static_cast<std::size_t>(kAgents));
   EXPECT_EQ(writers_of["maptr/ready"].size(), static_cast<std::size_t>(kAgents + 4));
   EXPECT_EQ(writers_of["maptr/tick"], std::set<std::string>{"plant"});
+  EXPECT_EQ(writers_of["maptr/hello"], std::set<std::string>{"plant"});
   EXPECT_EQ(writers_of["maptr/control"], std::set<std::string>{"launcher"});
   EXPECT_TRUE(run.result.summary["recording"]["rejected"].empty()) << run.result.summary["recording"].dump();
   // The summary's own check agrees: nothing the plant used is missing from run.mcap.
@@ -143,6 +145,8 @@ TEST(Record, RunMcapHoldsOneSamplePerPublicationOfTheFleet) {
     if (!commands.count(k)) missing += " " + std::to_string(k);
   EXPECT_EQ(commands.size(), ticks) << "central's commands missing for ticks" << missing;
   EXPECT_EQ(topics.at("maptr/ready").size(), static_cast<std::size_t>(kAgents) + 4);
+  // The plant's hello (its ports opened before tick 0), once.
+  EXPECT_EQ(topics.at("maptr/hello").size(), 1u);
 }
 
 TEST(Record, EveryPlantTickEqualsItsTraceRow) {
