@@ -35,6 +35,7 @@ bool PlantLoop::discover() {
   // process again after a longer stall; this line tells which endpoints were never matched).
   auto counts = std::make_tuple(-1, -1, -1, -1);
   auto last_change = t_launch, last_report = t_launch, last_unmatched = t_launch;
+  bool missed_reported = false;  // a report named someone: the launcher hears when no one is left
   while (!stop_.load() && !started) {
     wait(c_.discovery_poll);
     const int replies = replies_.matched() - hidden_replies();
@@ -54,11 +55,14 @@ bool PlantLoop::discover() {
     // those members again rather than the plant (Fleet::rematch_unready).
     if (!announced && Clock::now() - last_unmatched >= c_.discovery_report) {
       last_unmatched = Clock::now();
-      comm::report_unmatched(w_ready_, "plant", msg::NODE_PLANT,
-                             discovery_unmatched(n_agents, discovery_view(tick_readers), msg::kMaxUnmatched));
+      const auto missing = discovery_unmatched(n_agents, discovery_view(tick_readers), msg::kMaxUnmatched);
+      comm::report_unmatched(w_ready_, "plant", msg::NODE_PLANT, missing);
+      missed_reported = missed_reported || !missing.empty();
     }
     if (!announced && replies >= n_agents && groups_.matched() >= 2 && centrals_.matched() >= 1 &&
         tick_match_.matched() >= tick_readers) {
+      // A report of no one, so that an earlier one naming members now matched is not acted on.
+      if (missed_reported) comm::report_unmatched(w_ready_, "plant", msg::NODE_PLANT, {});
       say_hello(tick_readers - 1);  // every tick reader but the launcher's
       comm::announce_ready(w_ready_, "plant", msg::NODE_PLANT);
       announced = true;
@@ -76,7 +80,7 @@ void PlantLoop::say_hello(int members) {
   const auto until = Clock::now() + c_.hello_wait;
   while (hello_match_.matched() < members && Clock::now() < until && !stop_.load()) wait(c_.discovery_poll);
   const auto t0 = Clock::now();
-  comm::announce_ready(w_hello_, "plant", msg::NODE_PLANT);
+  comm::write_ready(w_hello_, "plant", msg::NODE_PLANT);
   log_.info("hello to {} of {} readers in {:.3f} s (their ports open before tick 0)", hello_match_.matched(), members,
             std::chrono::duration<double>(Clock::now() - t0).count());
 }

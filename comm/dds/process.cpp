@@ -96,14 +96,18 @@ ReadyGate ready_gate = nullptr;
 
 void set_ready_gate(ReadyGate gate) { ready_gate = gate; }
 
-void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind) {
-  if (ready_gate != nullptr && !ready_gate(name)) return;
+void write_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind) {
   msg::NodeReady r;
   r.name(name);
   r.kind(kind);
   r.pid(static_cast<uint32_t>(getpid()));
   r.ready(true);
   w->write(&r);
+}
+
+void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind) {
+  if (ready_gate != nullptr && !ready_gate(name)) return;
+  write_ready(w, name, kind);
 }
 
 void report_unmatched(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind,

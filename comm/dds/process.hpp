@@ -57,6 +57,10 @@ void set_ready_gate(ReadyGate gate);
 /// gate withholds it.
 void announce_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind);
 
+/// Writes this process's NodeReady (ready) on `w`, whatever the ready gate says: for the plant's
+/// hello (topic::kHello); the gate is about the readiness the launcher waits for.
+void write_ready(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind);
+
 /// Publishes a NodeReady that is not ready and names the members this process has not matched
 /// yet (at most msg::kMaxUnmatched of them): the plant, while its discovery waits.
 void report_unmatched(eprosima::fastdds::dds::DataWriter* w, const std::string& name, msg::NodeKind kind,
